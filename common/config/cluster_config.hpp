@@ -1,0 +1,83 @@
+#pragma once
+// The cluster configuration: network, dome, output and the channels (one slave process each).
+// Loaded from JSON by load_cluster_config(); every mistake throws ConfigError naming file and field.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <optional>
+
+#include "projection/channel_frustum.hpp"
+
+namespace cupola {
+
+enum class Transport { Multicast, Broadcast, Unicast };
+
+struct NetworkConfig {
+    Transport transport = Transport::Multicast;
+    std::string multicast_group = "239.255.76.67";
+    std::string interface_address = "127.0.0.1";      // multicast interface / bind address for slaves
+    std::string broadcast_address = "127.255.255.255";
+    std::string master_address = "127.0.0.1";         // where slaves send their reports
+    uint16_t snapshot_port = 47600;                    // master -> slaves (multicast, broadcast)
+    uint16_t report_port = 47601;                      // slaves -> master
+    int max_datagram_bytes = 1400;                     // fragments snapshots above this
+    int channel_timeout_ms = 2000;                     // silent channel is dropped after this
+    int resend_interval_ms = 100;                      // snapshot re-sent while the barrier waits
+    int hello_wait_ms = 15000;                         // master waits this long for all channels at start
+};
+
+struct DomeConfig {
+    double fov_deg = 180.0;
+    double tilt_deg = 0.0;
+    bool require_full_coverage = true;  // a hole between channel frusta is a config error
+};
+
+struct OutputConfig {
+    std::vector<std::string> formats = {"png"};  // "png" (8-bit sRGB) and/or "exr" (half float, linear)
+    int domemaster_size = 1024;
+    double exposure = 1.0;
+};
+
+struct ChannelConfig {
+    int id = 0;
+    std::string name;
+    EulerDeg orientation;
+    FovDeg fov;
+    int width = 512;
+    int height = 512;
+    std::string unicast_address;  // "host:port", used with the unicast transport
+    ChannelFrustum frustum() const { return ChannelFrustum(orientation, fov, width, height); }
+};
+
+struct ClusterConfig {
+    std::string file;        // absolute path of the config file
+    std::string directory;   // its directory; relative paths resolve against it
+    uint32_t cluster_id = 1;
+    std::string key_file;    // resolved path
+    std::string scene_file;  // resolved path
+    std::string show_file;   // resolved path
+    double frame_rate_hz = 0.0;  // 0: as fast as the barrier allows
+    int egl_device = -1;         // -1: first usable device, then Mesa surfaceless
+    NetworkConfig network;
+    DomeConfig dome;
+    OutputConfig output;
+    std::vector<ChannelConfig> channels;
+
+    const ChannelConfig& channel(int id) const;  // throws std::out_of_range naming the id
+};
+
+ClusterConfig load_cluster_config(const std::string& file);
+
+// Direction (dome frame) of the first point of the dome image circle that no channel covers, or
+// nothing when the channels cover the whole dome. samples: grid points across the diameter.
+struct CoverageHole {
+    double azimuth_deg;    // 0 = front, 90 = right
+    double elevation_deg;  // 90 = apex
+};
+std::optional<CoverageHole> find_coverage_hole(const DomeConfig& dome, const std::vector<ChannelConfig>& channels,
+                                               int samples = 121);
+
+std::string resolve_path(const std::string& base_dir, const std::string& path);
+
+}  // namespace cupola

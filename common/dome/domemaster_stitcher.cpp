@@ -1,0 +1,299 @@
+#include "dome/domemaster_stitcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "projection/fisheye.hpp"
+
+namespace cupola {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double smoothstep01(double t) {
+    t = std::clamp(t, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+// Runs body(row) for every row in [0, rows), on at most two threads.
+void for_rows(int rows, const std::function<void(int)>& body) {
+    const unsigned hw = std::thread::hardware_concurrency();
+    if (rows < 64 || hw < 2) {
+        for (int y = 0; y < rows; ++y) body(y);
+        return;
+    }
+    std::thread second([&] {
+        for (int y = 1; y < rows; y += 2) body(y);
+    });
+    for (int y = 0; y < rows; y += 2) body(y);
+    second.join();
+}
+
+void check_size(int size) {
+    if (size <= 0 || size > 32768)
+        throw std::invalid_argument("domemaster size " + std::to_string(size) + " is not in 1..32768");
+}
+
+Image blank(int size) {
+    Image out;
+    out.width = size;
+    out.height = size;
+    out.rgba.assign(static_cast<size_t>(size) * size * 4, 0.0f);
+    return out;
+}
+
+void check_image(const ChannelFrustum& f, const Image& im, size_t index) {
+    if (im.width != f.width() || im.height != f.height() ||
+        im.rgba.size() != static_cast<size_t>(im.width) * im.height * 4)
+        throw std::invalid_argument("channel " + std::to_string(index) + ": image is " + std::to_string(im.width) +
+                                    "x" + std::to_string(im.height) + " but its frustum is " +
+                                    std::to_string(f.width()) + "x" + std::to_string(f.height()));
+}
+
+}  // namespace
+
+void sample_bilinear(const Image& image, double x, double y, float out[4]) {
+    const double fx = x - 0.5, fy = y - 0.5;
+    const double x0f = std::floor(fx), y0f = std::floor(fy);
+    const double ax = fx - x0f, ay = fy - y0f;
+    const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+    const int xa = std::clamp(x0, 0, image.width - 1), xb = std::clamp(x0 + 1, 0, image.width - 1);
+    const int ya = std::clamp(y0, 0, image.height - 1), yb = std::clamp(y0 + 1, 0, image.height - 1);
+    const float* p00 = image.pixel(xa, ya);
+    const float* p10 = image.pixel(xb, ya);
+    const float* p01 = image.pixel(xa, yb);
+    const float* p11 = image.pixel(xb, yb);
+    const double w00 = (1 - ax) * (1 - ay), w10 = ax * (1 - ay), w01 = (1 - ax) * ay, w11 = ax * ay;
+    for (int c = 0; c < 4; ++c)
+        out[c] = static_cast<float>(w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c]);
+}
+
+Image stitch_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
+                        const std::vector<const Image*>& images, int size, double feather_px) {
+    check_size(size);
+    if (channels.size() != images.size())
+        throw std::invalid_argument("stitch_domemaster: " + std::to_string(channels.size()) + " channels but " +
+                                    std::to_string(images.size()) + " images");
+    for (size_t i = 0; i < channels.size(); ++i)
+        if (images[i]) check_image(channels[i], *images[i], i);
+
+    const FisheyeMapping fish(dome.fov_deg);
+    Image out = blank(size);
+    for_rows(size, [&](int y) {
+        std::vector<double> weight(channels.size());
+        std::vector<glm::dvec2> where(channels.size());
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 uv = FisheyeMapping::pixel_to_uv(glm::dvec2(x + 0.5, y + 0.5), size);
+            const auto dir = fish.uv_to_direction(uv);
+            if (!dir) continue;  // outside the circle: black, alpha 0
+            double total = 0.0;
+            int covering = 0;
+            for (size_t i = 0; i < channels.size(); ++i) {
+                weight[i] = -1.0;  // not covering
+                if (!images[i]) continue;
+                const auto p = channels[i].dome_direction_to_pixel(*dir);
+                if (!p) continue;
+                const double d = channels[i].edge_distance_px(*p);
+                if (d < 0.0) continue;
+                where[i] = *p;
+                weight[i] = feather_px > 0.0 ? smoothstep01(d / feather_px) : 1.0;
+                total += weight[i];
+                ++covering;
+            }
+            if (covering == 0) continue;  // a hole in the coverage: black, alpha 0
+            // Every covering channel exactly on its edge: equal weights rather than 0/0.
+            const bool equal = total <= 1e-12;
+            const double norm = equal ? 1.0 / covering : 1.0 / total;
+            double acc[3] = {0.0, 0.0, 0.0};
+            for (size_t i = 0; i < channels.size(); ++i) {
+                if (weight[i] < 0.0) continue;
+                const double w = (equal ? 1.0 : weight[i]) * norm;
+                if (w == 0.0) continue;
+                float s[4];
+                sample_bilinear(*images[i], where[i].x, where[i].y, s);
+                for (int c = 0; c < 3; ++c) acc[c] += w * s[c];
+            }
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < 3; ++c) o[c] = static_cast<float>(acc[c]);
+            o[3] = 1.0f;
+        }
+    });
+    return out;
+}
+
+Image remap_channel_to_fisheye(const DomeConfig& dome, const ChannelFrustum& channel, const Image& image, int size) {
+    check_size(size);
+    check_image(channel, image, 0);
+    const FisheyeMapping fish(dome.fov_deg);
+    Image out = blank(size);
+    for_rows(size, [&](int y) {
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 uv = FisheyeMapping::pixel_to_uv(glm::dvec2(x + 0.5, y + 0.5), size);
+            const auto dir = fish.uv_to_direction(uv);
+            if (!dir) continue;
+            const auto p = channel.dome_direction_to_pixel(*dir);
+            if (!p || channel.edge_distance_px(*p) < 0.0) continue;
+            float s[4];
+            sample_bilinear(image, p->x, p->y, s);
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < 3; ++c) o[c] = s[c];
+            o[3] = 1.0f;
+        }
+    });
+    return out;
+}
+
+namespace {
+
+struct ChannelFiles {
+    std::map<uint64_t, std::string> by_frame;  // frame -> path (EXR preferred over PNG)
+};
+
+ChannelFiles scan_channel_dir(const fs::path& dir) {
+    static const std::regex name_re(R"(frame_(\d+)\.(exr|png))");
+    ChannelFiles files;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        std::error_code ec2;
+        if (!entry.is_regular_file(ec2)) continue;
+        const std::string name = entry.path().filename().string();
+        std::smatch m;
+        if (!std::regex_match(name, m, name_re)) continue;
+        uint64_t frame = 0;
+        try {
+            frame = std::stoull(m[1].str());
+        } catch (const std::exception&) {
+            continue;
+        }
+        auto it = files.by_frame.find(frame);
+        const bool is_exr = m[2].str() == "exr";
+        if (it == files.by_frame.end() || is_exr) files.by_frame[frame] = entry.path().string();
+    }
+    return files;
+}
+
+std::string frame_label(uint64_t frame) { return "frame " + std::to_string(frame); }
+
+}  // namespace
+
+StitchReport stitch_run_directory(const ClusterConfig& config, const std::string& in_dir, const std::string& out_dir,
+                                  std::optional<uint64_t> only_frame, int size) {
+    StitchReport report;
+    if (size <= 0) size = config.output.domemaster_size;
+    check_size(size);
+    if (config.channels.empty()) {
+        report.problems.push_back(config.file + ": the config has no channels");
+        return report;
+    }
+    if (!fs::is_directory(in_dir)) {
+        report.problems.push_back(in_dir + ": not a directory");
+        return report;
+    }
+
+    std::vector<ChannelFiles> files;
+    std::set<uint64_t> all_frames;
+    for (const auto& ch : config.channels) {
+        const fs::path dir = fs::path(in_dir) / ch.name;
+        files.push_back(scan_channel_dir(dir));
+        if (files.back().by_frame.empty())
+            report.problems.push_back("channel " + ch.name + ": no frames in " + dir.string());
+        for (const auto& [f, _] : files.back().by_frame) all_frames.insert(f);
+    }
+    if (only_frame) {
+        if (!all_frames.count(*only_frame)) {
+            report.problems.push_back(frame_label(*only_frame) + ": not found in any channel under " + in_dir);
+            return report;
+        }
+        all_frames = {*only_frame};
+    }
+    if (all_frames.empty()) {
+        report.problems.push_back(in_dir + ": no channel frames (expected " + in_dir +
+                                  "/<channel name>/frame_NNNNNN.exr or .png)");
+        return report;
+    }
+
+    std::vector<std::string> formats = {"png"};
+    if (std::find(config.output.formats.begin(), config.output.formats.end(), "exr") != config.output.formats.end())
+        formats.push_back("exr");
+
+    for (uint64_t frame : all_frames) {
+        const std::string label = frame_label(frame);
+        std::vector<ChannelFrustum> frusta;
+        std::vector<Image> images;
+        std::vector<FrameMetadata> metas;
+        std::vector<std::string> names;
+        for (size_t i = 0; i < config.channels.size(); ++i) {
+            const auto& ch = config.channels[i];
+            auto it = files[i].by_frame.find(frame);
+            if (it == files[i].by_frame.end()) {
+                report.problems.push_back(label + ": missing in channel " + ch.name);
+                continue;
+            }
+            FrameMetadata meta;
+            Image im;
+            try {
+                im = read_image_radiance(it->second, &meta);
+            } catch (const std::exception& e) {
+                report.problems.push_back(label + ": channel " + ch.name + ": " + e.what());
+                continue;
+            }
+            if (im.width != ch.width || im.height != ch.height)
+                report.problems.push_back(label + ": " + it->second + " is " + std::to_string(im.width) + "x" +
+                                          std::to_string(im.height) + " but channel " + ch.name + " is " +
+                                          std::to_string(ch.width) + "x" + std::to_string(ch.height) +
+                                          " in the config (resampled with its own size)");
+            if (meta.frame != frame)
+                report.problems.push_back(label + ": " + it->second + " records frame " + std::to_string(meta.frame));
+            if (meta.channel_id != ch.id)
+                report.problems.push_back(label + ": " + it->second + " records channel " +
+                                          std::to_string(meta.channel_id) + ", the config says " + ch.name +
+                                          " is channel " + std::to_string(ch.id));
+            frusta.emplace_back(ch.orientation, ch.fov, im.width, im.height);
+            images.push_back(std::move(im));
+            metas.push_back(std::move(meta));
+            names.push_back(ch.name);
+        }
+        if (images.empty()) {
+            report.problems.push_back(label + ": no readable channel image, nothing written");
+            continue;
+        }
+        // Sync check: every channel must have rendered the same snapshot.
+        bool agree = true;
+        for (const auto& m : metas)
+            if (m.snapshot_hash.empty() || m.snapshot_hash != metas.front().snapshot_hash) agree = false;
+        if (!agree) {
+            std::string msg = label + ": snapshot hashes disagree:";
+            for (size_t k = 0; k < metas.size(); ++k)
+                msg += " " + names[k] + "=" + (metas[k].snapshot_hash.empty() ? "(none)" : metas[k].snapshot_hash);
+            report.problems.push_back(msg);
+        }
+
+        std::vector<const Image*> ptrs;
+        for (const auto& im : images) ptrs.push_back(&im);
+        const Image dome = stitch_domemaster(config.dome, frusta, ptrs, size);
+
+        FrameMetadata out_meta;
+        out_meta.channel_id = -1;
+        out_meta.channel_name = "dome";
+        out_meta.frame = frame;
+        out_meta.sim_time_s = metas.front().sim_time_s;
+        out_meta.snapshot_hash = metas.front().snapshot_hash;
+        out_meta.renderer = metas.front().renderer;
+        const auto written = write_frame(out_dir, dome, out_meta, formats, config.output.exposure);
+        report.written.insert(report.written.end(), written.begin(), written.end());
+        report.frames.push_back(frame);
+    }
+    return report;
+}
+
+}  // namespace cupola

@@ -1,0 +1,55 @@
+#pragma once
+// Channel frames and domemasters on disk, written and read with OpenImageIO.
+//  - EXR: half-float RGBA, linear scene radiance times exposure (no tone mapping).
+//  - PNG: 8-bit sRGB RGBA after the display transform (exposure, clamp, sRGB encode).
+// Every file carries metadata attributes so that sync can be checked from the files alone:
+//   cupola:channel (int), cupola:channel_name, cupola:frame (int, as string if > 2^31),
+//   cupola:sim_time (string, %.17g seconds since J2000), cupola:snapshot_hash (16 hex digits),
+//   cupola:renderer (GL_RENDERER string).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cupola {
+
+// Linear RGBA float image; row 0 is the TOP row.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgba;  // width*height*4
+
+    float* pixel(int x, int y) { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+    const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+};
+
+struct FrameMetadata {
+    int channel_id = -1;  // -1 for a stitched domemaster
+    std::string channel_name;
+    uint64_t frame = 0;
+    double sim_time_s = 0.0;
+    std::string snapshot_hash;
+    std::string renderer;
+};
+
+// File name of a frame: "frame_000042.png" (six digits, more if needed).
+std::string frame_file_name(uint64_t frame, const std::string& extension);
+
+// Writes DIR/frame_NNNNNN.<fmt> for each format in {"png","exr"}; creates DIR. Returns the paths.
+// Throws std::runtime_error naming the path on failure.
+std::vector<std::string> write_frame(const std::string& dir, const Image& image, const FrameMetadata& meta,
+                                     const std::vector<std::string>& formats, double exposure);
+
+// Reads an image written by write_frame (or any RGB/RGBA image) as linear float. PNG input is
+// decoded from sRGB and divided by the exposure recorded in the file (1 if absent).
+Image read_image(const std::string& path, FrameMetadata* meta = nullptr);
+
+// Like read_image(), but EXR (linear) input is also divided by the recorded exposure, so that
+// both formats come back as scene radiance: what the stitcher resamples before it applies the
+// output exposure again.
+Image read_image_radiance(const std::string& path, FrameMetadata* meta = nullptr);
+
+// The display transform used for PNG: sRGB encode of clamp(exposure * linear).
+float linear_to_srgb(float linear);
+float srgb_to_linear(float encoded);
+
+}  // namespace cupola

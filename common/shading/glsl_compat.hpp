@@ -1,0 +1,84 @@
+#pragma once
+// Lets the GLSL files under shaders/shared/ compile as C++ with GLM, so the CPU and the GPU share
+// one source for the shading functions (see shared_shading.hpp).
+//
+// Include this, then the .glsl files, inside namespace cupola::shading (and an anonymous
+// namespace: GLSL has no `inline`, so the functions get internal linkage instead). Nothing is
+// #defined. The shared files keep to the subset both languages accept:
+//   - no in/out/inout qualifiers, no swizzle assignment, no const arrays, no GLSL-only built-ins
+//     beyond the ones below;
+//   - literals like 1.0 are double in C++: scalar arithmetic is fine (it narrows on assignment or
+//     return), and vector * 1.0 works through the mixed overloads below.
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+namespace cupola::shading {
+
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using mat3 = glm::mat3;
+using mat4 = glm::mat4;
+
+// Vector built-ins (glm) and the std scalar overloads glm re-exports.
+using glm::abs;
+using glm::acos;
+using glm::asin;
+using glm::atan;
+using glm::clamp;
+using glm::cos;
+using glm::cross;
+using glm::distance;
+using glm::dot;
+using glm::exp;
+using glm::floor;
+using glm::fract;
+using glm::length;
+using glm::log;
+using glm::max;
+using glm::min;
+using glm::mix;
+using glm::normalize;
+using glm::pow;
+using glm::sin;
+using glm::smoothstep;
+using glm::sqrt;
+using glm::step;
+using glm::tan;
+
+// Scalar built-ins that take float; a double literal argument converts (GLSL semantics).
+// (exp, sqrt, pow, asin, acos, ... on float come from the std overloads glm re-exports.)
+inline float max(float a, float b) { return a > b ? a : b; }
+inline float min(float a, float b) { return a < b ? a : b; }
+inline float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
+inline float mix(float a, float b, float t) { return a + (b - a) * t; }
+inline float step(float edge, float x) { return x < edge ? 0.0f : 1.0f; }
+inline float smoothstep(float e0, float e1, float x) {
+    const float t = clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+inline float atan(float y, float x) { return std::atan2(y, x); }
+inline float abs(float x) { return std::fabs(x); }
+
+// vecN (float) combined with a double literal, as GLSL allows.
+template <glm::length_t L>
+glm::vec<L, float> operator*(const glm::vec<L, float>& v, double s) { return v * static_cast<float>(s); }
+template <glm::length_t L>
+glm::vec<L, float> operator*(double s, const glm::vec<L, float>& v) { return v * static_cast<float>(s); }
+template <glm::length_t L>
+glm::vec<L, float> operator/(const glm::vec<L, float>& v, double s) { return v / static_cast<float>(s); }
+template <glm::length_t L>
+glm::vec<L, float> operator+(const glm::vec<L, float>& v, double s) { return v + static_cast<float>(s); }
+template <glm::length_t L>
+glm::vec<L, float> operator-(const glm::vec<L, float>& v, double s) { return v - static_cast<float>(s); }
+template <glm::length_t L>
+glm::vec<L, float> max(const glm::vec<L, float>& v, double s) { return glm::max(v, static_cast<float>(s)); }
+template <glm::length_t L>
+glm::vec<L, float> min(const glm::vec<L, float>& v, double s) { return glm::min(v, static_cast<float>(s)); }
+template <glm::length_t L>
+glm::vec<L, float> clamp(const glm::vec<L, float>& v, double lo, double hi) {
+    return glm::clamp(v, static_cast<float>(lo), static_cast<float>(hi));
+}
+
+}  // namespace cupola::shading

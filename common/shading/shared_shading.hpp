@@ -1,0 +1,29 @@
+#pragma once
+// The shading functions of shaders/shared/*.glsl, compiled as C++ (the GPU runs the same text:
+// SceneRenderer prepends these files to its shaders). See glsl_compat.hpp for the rules.
+#include "shading/glsl_compat.hpp"
+
+namespace cupola::shading {
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-variable"
+#endif
+namespace {
+#include "shared/constants.glsl"
+#include "shared/limb_darkening.glsl"
+#include "shared/star_psf.glsl"
+#include "shared/star_color.glsl"
+#include "shared/sphere_view.glsl"
+}  // namespace
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+}  // namespace cupola::shading
+
+namespace cupola {
+// The shared files in the order a shader needs them prepended (after its #version line).
+inline const char* const kSharedShadingFiles[] = {"shared/constants.glsl", "shared/limb_darkening.glsl",
+                                                  "shared/star_psf.glsl", "shared/star_color.glsl",
+                                                  "shared/sphere_view.glsl"};
+}  // namespace cupola

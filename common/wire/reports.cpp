@@ -1,0 +1,65 @@
+#include "wire/reports.hpp"
+
+#include <cctype>
+#include <cmath>
+
+#include "wire/byte_io.hpp"
+
+namespace cupola {
+
+std::vector<uint8_t> encode_hello(const HelloMessage& m) {
+    std::vector<uint8_t> out;
+    ByteWriter w(out);
+    w.u16(m.channel);
+    w.u32(m.process_id);
+    w.u64(m.last_frame);
+    return out;
+}
+
+HelloMessage decode_hello(const std::vector<uint8_t>& p) {
+    ByteReader r(p.data(), p.size());
+    HelloMessage m;
+    m.channel = r.u16("hello.channel");
+    m.process_id = r.u32("hello.process_id");
+    m.last_frame = r.u64("hello.last_frame");
+    if (r.remaining()) throw WireError("unexpected bytes after hello");
+    return m;
+}
+
+std::vector<uint8_t> encode_frame_report(const FrameReport& rep) {
+    std::vector<uint8_t> out;
+    ByteWriter w(out);
+    w.u16(rep.channel);
+    w.u64(rep.frame);
+    std::string h = rep.snapshot_hash;
+    h.resize(16, '0');
+    w.bytes(reinterpret_cast<const uint8_t*>(h.data()), 16);
+    w.f32(rep.render_ms);
+    w.f32(rep.write_ms);
+    w.u64(rep.packets_rejected);
+    w.u64(rep.snapshots_missed);
+    w.u64(rep.snapshot_received_ns);
+    return out;
+}
+
+FrameReport decode_frame_report(const std::vector<uint8_t>& p) {
+    ByteReader r(p.data(), p.size());
+    FrameReport rep;
+    rep.channel = r.u16("report.channel");
+    rep.frame = r.u64("report.frame");
+    rep.snapshot_hash.resize(16);
+    for (auto& c : rep.snapshot_hash) {
+        c = static_cast<char>(r.u8("report.snapshot_hash"));
+        if (!std::isxdigit(static_cast<unsigned char>(c))) throw WireError("report.snapshot_hash is not hexadecimal");
+    }
+    rep.render_ms = r.f32("report.render_ms");
+    rep.write_ms = r.f32("report.write_ms");
+    if (!std::isfinite(rep.render_ms) || !std::isfinite(rep.write_ms)) throw WireError("report timings not finite");
+    rep.packets_rejected = r.u64("report.packets_rejected");
+    rep.snapshots_missed = r.u64("report.snapshots_missed");
+    rep.snapshot_received_ns = r.u64("report.snapshot_received_ns");
+    if (r.remaining()) throw WireError("unexpected bytes after frame report");
+    return rep;
+}
+
+}  // namespace cupola

@@ -1,0 +1,32 @@
+#pragma once
+// Slave -> master message bodies.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cupola {
+
+struct HelloMessage {
+    uint16_t channel = 0;
+    uint32_t process_id = 0;   // tells a restarted slave from the old one
+    uint64_t last_frame = 0;   // last frame this process rendered (0 if none)
+};
+
+// "frame N rendered" with per-channel measurements.
+struct FrameReport {
+    uint16_t channel = 0;
+    uint64_t frame = 0;
+    std::string snapshot_hash;  // 16 hex digits
+    float render_ms = 0.0f;
+    float write_ms = 0.0f;
+    uint64_t packets_rejected = 0;  // this slave's totals so far
+    uint64_t snapshots_missed = 0;
+    uint64_t snapshot_received_ns = 0;  // CLOCK_MONOTONIC when the whole snapshot arrived (one-host latency)
+};
+
+std::vector<uint8_t> encode_hello(const HelloMessage& m);
+HelloMessage decode_hello(const std::vector<uint8_t>& payload);
+std::vector<uint8_t> encode_frame_report(const FrameReport& r);
+FrameReport decode_frame_report(const std::vector<uint8_t>& payload);
+
+}  // namespace cupola

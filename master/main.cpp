@@ -1,0 +1,40 @@
+// cupola-master: owns time, camera and bodies; broadcasts a snapshot per frame; runs the barrier.
+#include <CLI/CLI.hpp>
+
+#include <csignal>
+
+#include "config/cluster_config.hpp"
+#include "master_node.hpp"
+#include "util/cli_main.hpp"
+
+namespace {
+cupola::MasterNode* g_master = nullptr;
+void on_signal(int) {
+    if (g_master) g_master->stop();
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Cupola master: simulation owner and frame-barrier for the cluster"};
+    std::string config;
+    long long frames = -1;
+    std::string events;
+    bool verbose = false, quiet = false;
+    app.add_option("-c,--config", config, "cluster config (JSON)")->required()->check(CLI::ExistingFile);
+    app.add_option("-n,--frames", frames, "stop after N frames and tell the slaves to quit")->check(CLI::Range(1LL, 1LL << 40));
+    app.add_option("--events", events, "write per-frame and per-channel events as JSON lines to this file");
+    app.add_flag("-v,--verbose", verbose, "debug logging");
+    app.add_flag("-q,--quiet", quiet, "warnings and errors only");
+    CLI11_PARSE(app, argc, argv);
+    cupola::setup_logging("master", verbose, quiet);
+    return cupola::run_main("cupola-master", [&] {
+        cupola::MasterOptions opt;
+        if (frames > 0) opt.frames = static_cast<uint64_t>(frames);
+        opt.events_file = events;
+        cupola::MasterNode master(cupola::load_cluster_config(config), opt);
+        g_master = &master;
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        return master.run();
+    });
+}

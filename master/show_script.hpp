@@ -1,0 +1,57 @@
+#pragma once
+// A show: keyframes of simulation time and camera, interpolated per frame. Read from a JSON show
+// file; every mistake throws ConfigError naming the file and the field.
+//
+// {
+//   "frame_interval_s": 0.0333,            // show seconds per frame when frame_rate_hz is 0
+//   "keyframes": [
+//     { "at_s": 0,                          // show time of this keyframe (strictly increasing)
+//       "time_utc": "2024-04-08T18:00:00Z", // simulation time here
+//       "camera": { "anchor": "earth",      // body the camera rides with ("" or absent: world origin)
+//                   "offset_m": [x, y, z],  // from the anchor, world (equatorial) axes, metres
+//                   "look_at": "moon",      // or "look_direction": [x, y, z]
+//                   "up": [0, 0, 1],        // world up hint (default: celestial north)
+//                   "target_elevation_deg": 40 } }  // raise the target above the dome's front horizon
+//   ]
+// }
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/scene_config.hpp"
+#include "wire/snapshot.hpp"
+
+namespace cupola {
+
+struct CameraKey {
+    std::optional<uint16_t> anchor;       // body id
+    glm::dvec3 offset_m{0.0};
+    std::optional<uint16_t> look_at;      // body id
+    glm::dvec3 look_direction{0, 1, 0};
+    glm::dvec3 up{0, 0, 1};
+    double target_elevation_deg = 0.0;
+};
+
+struct ShowKeyframe {
+    double at_s = 0.0;
+    double sim_time_s = 0.0;
+    CameraKey camera;
+};
+
+class ShowScript {
+public:
+    ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s);
+    static ShowScript load(const std::string& file, const SceneConfig& scene);
+
+    // The snapshot for a show time: sim time, camera and every body's state (analytic ephemeris).
+    Snapshot evaluate(double show_time_s, const SceneConfig& scene) const;
+
+    double frame_interval_s() const { return frame_interval_s_; }
+    const std::vector<ShowKeyframe>& keyframes() const { return keys_; }
+
+private:
+    std::vector<ShowKeyframe> keys_;
+    double frame_interval_s_;
+};
+
+}  // namespace cupola

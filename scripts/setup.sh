@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Cupola needs, only those that are missing. Run as root
+# (or with sudo available). Safe to run again.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config git python3
+  libglm-dev                                   # maths (GLSL-compatible types)
+  libegl-dev libopengl-dev libgl-dev           # EGL + OpenGL through libglvnd
+  libegl-mesa0 libgl1-mesa-dri                 # Mesa (llvmpipe) for machines without a GPU
+  libopenimageio-dev openimageio-tools         # image files (EXR, PNG) and oiiotool
+  libusb-1.0-0-dev                             # navigation devices (master)
+  nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  libsodium-dev                                # HMAC-SHA256 packet authentication, BLAKE2b hashes
+  liberfa-dev                                  # time scales and Earth rotation (ERFA)
+  libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
+  xplanet-images                               # Earth texture
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,29 @@
+#version 450 core
+// A planet or moon: analytic ray-sphere hit, equirectangular texture in the body frame
+// (lon = atan(y, x), north = +Z), Lambert-lit by the sun.
+uniform vec4 u_tangents;
+uniform vec2 u_size;
+uniform vec3 u_center_dir;       // unit, channel frame
+uniform float u_sin_alpha;       // R / d
+uniform mat3 u_channel_to_body;
+uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards the sun
+uniform vec3 u_lit;              // albedo / pi * irradiance * tint
+uniform sampler2D u_texture;     // linear RGB, row 0 = north
+
+out vec4 frag_color;
+
+void main() {
+    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+    vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+    if (hit.w < 0.0) {
+        discard;
+    }
+    vec3 n = hit.xyz;
+    vec3 nb = u_channel_to_body * n;
+    float lon = atan(nb.y, nb.x);
+    float lat = asin(clamp(nb.z, -1.0, 1.0));
+    vec2 uv = vec2(0.5 + lon / (2.0 * CUPOLA_PI), 0.5 - lat / CUPOLA_PI);
+    vec3 albedo_map = textureLod(u_texture, uv, 0.0).rgb;
+    float cos_i = max(dot(n, u_sun_dir), 0.0);
+    frag_color = vec4(u_lit * cos_i * albedo_map, 1.0);
+}

@@ -1,0 +1,36 @@
+// View rays and analytic spheres (shared by GLSL and C++).
+
+// Unit view direction, in the channel frame (+X right, +Y up, -Z forward), through the point
+// `frag` (window pixels, origin at the BOTTOM-left, like gl_FragCoord) of a size.x x size.y
+// framebuffer whose frustum has the tangents (left, right, down, up) of its half-angles.
+vec3 channel_ray(vec2 frag, vec2 size, vec4 tangents) {
+    float x = -tangents.x + frag.x / size.x * (tangents.x + tangents.y);
+    float y = -tangents.z + frag.y / size.y * (tangents.z + tangents.w);
+    return normalize(vec3(x, y, -1.0));
+}
+
+// Where the view ray v (unit, from the camera) meets a sphere whose centre lies in the unit
+// direction c_hat and whose angular radius alpha is given as sin_alpha = R / d.
+// Returns (n, mu): n = unit outward surface normal at the first hit, mu = cos(angle between n
+// and the direction back to the camera), with mu < 0 when the ray misses.
+// Everything is in directions and ratios, never in positions: exact for any distance in float
+// (the angle uses the chord, accurate for tiny angles; the CPU supplies c_hat and sin_alpha
+// computed in double).
+vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
+    float theta = 2.0 * asin(clamp(0.5 * length(v - c_hat), 0.0, 1.0));
+    if (theta >= 1.5707963) {
+        return vec4(0.0, 0.0, 0.0, -1.0);
+    }
+    float rho = sin(theta) / sin_alpha;  // distance of the ray from the centre, in radii
+    if (rho >= 1.0) {
+        return vec4(0.0, 0.0, 0.0, -1.0);
+    }
+    float mu = sqrt(1.0 - rho * rho);
+    vec3 perp = c_hat - v * cos(theta);  // from the ray toward the centre, length sin(theta)
+    float plen = length(perp);
+    vec3 n = -v * mu;
+    if (plen > 1e-12) {
+        n = n - perp * (rho / plen);
+    }
+    return vec4(normalize(n), mu);
+}

@@ -1,0 +1,40 @@
+#pragma once
+// Pass 3: planets and moons, analytic ray-sphere on a viewpoint-oriented billboard (no mesh),
+// textured from an equirectangular image in the body frame and Lambert-lit by the scene's star:
+//   E = pi * L_sun * (1 - u/3) * (R_sun / d_sun)^2,  L = albedo / pi * E * max(cos i, 0) * texture.
+#include <map>
+#include <memory>
+
+#include "config/scene_config.hpp"
+#include "gl_buffer.hpp"
+#include "gl_program.hpp"
+#include "gl_texture.hpp"
+#include "sphere_billboard.hpp"
+#include "wire/snapshot.hpp"
+
+namespace cupola {
+
+struct SunLight {
+    bool present = false;
+    glm::dvec3 position_m{0.0};
+    double radius_m = 0.0;
+    double radiance = 0.0;  // disc centre
+    double limb_u = 0.0;
+};
+
+// Irradiance (scene units) at distance d_m from the light's centre.
+double sun_irradiance(const SunLight& sun, double d_m);
+
+class BodyPass {
+public:
+    explicit BodyPass(const SceneConfig& scene);  // loads every planet/moon texture once
+    void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
+              const SunLight& sun);
+
+private:
+    GlProgram program_;
+    GlEmptyVertexArray vao_;
+    std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
+};
+
+}  // namespace cupola

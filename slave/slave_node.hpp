@@ -1,0 +1,31 @@
+#pragma once
+// The slave process for one channel: joins the cluster, renders every snapshot it receives into
+// its frustum slice, writes the frame files and reports "frame N rendered" to the master.
+#include <atomic>
+#include <string>
+
+#include "config/cluster_config.hpp"
+
+namespace cupola {
+
+struct SlaveOptions {
+    std::string out_dir;       // frame files go here
+    int egl_device = -2;       // -2: from the config
+    int idle_timeout_s = 30;   // exit when no snapshot arrives for this long (master gone)
+    std::vector<std::string> formats;  // empty: from the config
+};
+
+class SlaveNode {
+public:
+    SlaveNode(ClusterConfig cluster, int channel_id, SlaveOptions options);
+    int run();
+    void stop() { stop_requested_ = true; }
+
+private:
+    ClusterConfig cluster_;
+    ChannelConfig channel_;
+    SlaveOptions options_;
+    std::atomic<bool> stop_requested_{false};
+};
+
+}  // namespace cupola

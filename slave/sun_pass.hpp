@@ -1,0 +1,21 @@
+#pragma once
+// Pass 2: a star of the scene (BodyKind::Star, the Sun) as a limb-darkened disc, drawn as an
+// analytic sphere on a viewpoint-oriented billboard (shaders/sun.frag, shared/limb_darkening.glsl).
+#include "config/scene_config.hpp"
+#include "gl_buffer.hpp"
+#include "gl_program.hpp"
+#include "sphere_billboard.hpp"
+
+namespace cupola {
+
+class SunPass {
+public:
+    SunPass();
+    void draw(const ChannelView& view, const BodyConfig& body, const SphereView& sphere);
+
+private:
+    GlProgram program_;
+    GlEmptyVertexArray vao_;
+};
+
+}  // namespace cupola

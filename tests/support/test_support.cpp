@@ -1,0 +1,38 @@
+#include "support/test_support.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace cupola::test {
+
+namespace fs = std::filesystem;
+
+std::string scratch_dir(const std::string& name) {
+    fs::path p = fs::path(CUPOLA_TEST_TMP) / name;
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p.string();
+}
+
+std::string source_path(const std::string& relative) { return (fs::path(CUPOLA_SOURCE_DIR) / relative).string(); }
+
+std::string bin_path(const std::string& program) { return (fs::path(CUPOLA_BIN_DIR) / program).string(); }
+
+void write_text(const std::string& path, const std::string& text) {
+    fs::create_directories(fs::path(path).parent_path());
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write " + path);
+    out << text;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read " + path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace cupola::test

@@ -1,0 +1,19 @@
+#pragma once
+// Small helpers shared by the tests: scratch folders, repository paths, writing files.
+#include <string>
+
+namespace cupola::test {
+
+// A fresh, empty folder under the build tree named after the test (removed and re-created).
+std::string scratch_dir(const std::string& name);
+
+// Absolute path of a file in the source tree, e.g. source_path("configs/dome-4ch.json").
+std::string source_path(const std::string& relative);
+
+// Absolute path of a built program, e.g. bin_path("cupola-master").
+std::string bin_path(const std::string& program);
+
+void write_text(const std::string& path, const std::string& text);
+std::string read_text(const std::string& path);
+
+}  // namespace cupola::test

@@ -1,0 +1,167 @@
+// Every config error names the file and the field; the shipped configs load.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "config/cluster_config.hpp"
+#include "config/config_error.hpp"
+#include "config/scene_config.hpp"
+#include "support/test_support.hpp"
+
+using namespace cupola;
+using nlohmann::json;
+
+namespace {
+
+json base_config() {
+    return json::parse(test::read_text(test::source_path("configs/dome-4ch.json")));
+}
+
+// Writes the config next to absolute paths of the repo's key, scene and show; returns its path.
+std::string write_config(const std::string& test_name, json cfg) {
+    const std::string dir = test::scratch_dir("config/" + test_name);
+    for (const char* k : {"key_file", "scene", "show"})
+        if (cfg.contains(k) && cfg[k].is_string())
+            cfg[k] = test::source_path("configs/" + cfg[k].get<std::string>());
+    const std::string path = dir + "/cluster.json";
+    test::write_text(path, cfg.dump(2));
+    return path;
+}
+
+// Loads and expects a ConfigError whose message names the file and `field` and contains `words`.
+void expect_error(const std::string& name, const json& cfg, const std::string& field, const std::string& words) {
+    const std::string path = write_config(name, cfg);
+    try {
+        load_cluster_config(path);
+        FAIL() << "no error for " << name;
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.field(), field) << e.what();
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+
+TEST(Config, ShippedConfigsLoad) {
+    for (const char* f : {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json"}) {
+        ClusterConfig c = load_cluster_config(test::source_path(f));
+        EXPECT_FALSE(c.channels.empty()) << f;
+        SceneConfig s = load_scene_config(c.scene_file);
+        EXPECT_EQ(s.bodies.size(), 3u);
+    }
+    ClusterConfig dome = load_cluster_config(test::source_path("configs/dome-4ch.json"));
+    EXPECT_EQ(dome.channels.size(), 4u);
+    EXPECT_EQ(dome.network.transport, Transport::Multicast);
+    EXPECT_FALSE(find_coverage_hole(dome.dome, dome.channels).has_value());
+    EXPECT_EQ(load_cluster_config(test::source_path("configs/wall-3ch.json")).channels.size(), 3u);
+}
+
+TEST(Config, UnknownKeyIsNamed) {
+    json c = base_config();
+    c["channels"][1]["fov"]["lef_deg"] = 40;
+    expect_error("unknown_nested", c, "channels[1].fov.lef_deg", "unknown key");
+    json t = base_config();
+    t["netwrok"] = json::object();
+    expect_error("unknown_top", t, "netwrok", "unknown key");
+}
+
+TEST(Config, MissingFieldIsNamed) {
+    json c = base_config();
+    c["channels"][2]["fov"].erase("up_deg");
+    expect_error("missing_fov", c, "channels[2].fov.up_deg", "missing required field");
+    json k = base_config();
+    k.erase("key_file");
+    expect_error("missing_key", k, "key_file", "missing required field");
+    json ch = base_config();
+    ch.erase("channels");
+    expect_error("missing_channels", ch, "channels", "missing required field");
+}
+
+TEST(Config, MalformedValuesAreNamed) {
+    json c = base_config();
+    c["channels"][0]["fov"]["left_deg"] = "fifty";
+    expect_error("string_for_number", c, "channels[0].fov.left_deg", "expected a number");
+    json r = base_config();
+    r["channels"][3]["fov"]["right_deg"] = 95;
+    expect_error("out_of_range", r, "channels[3].fov.right_deg", "outside the allowed range");
+    json t = base_config();
+    t["network"]["transport"] = "carrier-pigeon";
+    expect_error("bad_transport", t, "network.transport", "is not one of");
+    json g = base_config();
+    g["network"]["multicast_group"] = "10.1.2.3";
+    expect_error("not_multicast", g, "network.multicast_group", "not a multicast address");
+    json p = base_config();
+    p["network"]["report_port"] = 70000;
+    expect_error("bad_port", p, "network.report_port", "outside the allowed range");
+    json d = base_config();
+    d["channels"][1]["id"] = 0;
+    expect_error("duplicate_id", d, "channels[1].id", "used twice");
+    json f = base_config();
+    f["output"]["formats"] = json::array({"png", "tiff"});
+    expect_error("bad_format", f, "output.formats[1]", "not one of");
+    json u = base_config();
+    u["network"]["transport"] = "unicast";
+    expect_error("unicast_needs_address", u, "channels[0].unicast_address", "missing required field");
+    json m = base_config();
+    m["key_file"] = "keys/does-not-exist.key";
+    expect_error("missing_file", m, "key_file", "does not exist");
+}
+
+TEST(Config, SyntaxErrorNamesFileAndPosition) {
+    const std::string dir = test::scratch_dir("config/syntax");
+    test::write_text(dir + "/broken.json", "{\n  \"cluster_id\": 3,\n  \"channels\": [ }\n");
+    try {
+        load_cluster_config(dir + "/broken.json");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Config, HoleInTheDomeIsAnError) {
+    json c = base_config();
+    c["channels"].erase(3);  // no channel looks left any more
+    expect_error("hole", c, "channels", "hole in the dome");
+    // The message says where the hole is: the left side of the dome (azimuth about -90).
+    ClusterConfig ok = load_cluster_config(test::source_path("configs/dome-4ch.json"));
+    ok.channels.pop_back();
+    auto hole = find_coverage_hole(ok.dome, ok.channels);
+    ASSERT_TRUE(hole.has_value());
+    EXPECT_LT(hole->azimuth_deg, -30.0);
+    EXPECT_GT(hole->azimuth_deg, -150.0);
+    // Narrowing every channel leaves a hole near the zenith or between channels.
+    json n = base_config();
+    for (auto& ch : n["channels"]) ch["fov"]["up_deg"] = 40;
+    expect_error("narrow", n, "channels", "hole in the dome");
+    // Allowed when coverage is not required (a wall, a partial dome).
+    json a = base_config();
+    a["channels"].erase(3);
+    a["dome"]["require_full_coverage"] = false;
+    EXPECT_NO_THROW(load_cluster_config(write_config("hole_allowed", a)));
+}
+
+TEST(Config, SceneErrorsAreNamed) {
+    const std::string dir = test::scratch_dir("config/scene");
+    json s = json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
+    s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["bodies"][1]["texture"] = "generated:earth";
+    s["bodies"][2]["radius_m"] = -5;
+    test::write_text(dir + "/scene.json", s.dump());
+    try {
+        load_scene_config(dir + "/scene.json");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.field(), "bodies[2].radius_m");
+    }
+    s["bodies"][2]["radius_m"] = 1.7e6;
+    s["bodies"][0]["kind"] = "galaxy";
+    test::write_text(dir + "/scene.json", s.dump());
+    try {
+        load_scene_config(dir + "/scene.json");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.field(), "bodies[0].kind");
+    }
+}

@@ -1,0 +1,143 @@
+// Fault: a slave killed mid-run is timed out by the master while the other channels keep
+// rendering; restarted, it rejoins and renders the current frame. Real processes throughout.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "config/cluster_config.hpp"
+#include "image/frame_image.hpp"
+#include "support/cluster_fixture.hpp"
+#include "util/child_process.hpp"
+
+using namespace cupola;
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+namespace {
+
+std::vector<nlohmann::json> read_events(const std::string& path) {
+    std::vector<nlohmann::json> out;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line))
+        if (!line.empty()) out.push_back(nlohmann::json::parse(line, nullptr, false));
+    return out;
+}
+
+bool wait_until(const std::function<bool()>& cond, std::chrono::seconds limit) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+        if (cond()) return true;
+        std::this_thread::sleep_for(50ms);
+    }
+    return cond();
+}
+
+}  // namespace
+
+TEST(Fault, KilledSlaveIsDroppedOthersGoOnRestartedSlaveRejoinsAtTheCurrentFrame) {
+    const std::string dir = test::scratch_dir("fault");
+    const int frames = 60;
+    const std::string config = test::write_test_cluster(
+        dir, 47840, 48, 48,
+        {{"frame_rate_hz", 8}, {"output", {{"formats", {"png"}}}},
+         {"network", {{"channel_timeout_ms", 800}, {"resend_interval_ms", 100}}}});
+    const ClusterConfig cfg = load_cluster_config(config);
+    const std::vector<std::string> headless = {"DISPLAY", "WAYLAND_DISPLAY"};
+    auto start_slave = [&](const ChannelConfig& ch) {
+        return ChildProcess({test::bin_path("cupola-slave"), "--config", config, "--channel", ch.name, "--out",
+                             dir + "/" + ch.name, "--idle-timeout", "60"},
+                            dir + "/" + ch.name + ".log", headless);
+    };
+    std::vector<ChildProcess> slaves;
+    for (const auto& ch : cfg.channels) slaves.push_back(start_slave(ch));
+    const std::string events_file = dir + "/events.jsonl";
+    ChildProcess master({test::bin_path("cupola-master"), "--config", config, "--frames", std::to_string(frames),
+                         "--events", events_file},
+                        dir + "/master.log", headless);
+
+    const ChannelConfig& victim = cfg.channels[2];
+    const std::string victim_dir = dir + "/" + victim.name;
+    ASSERT_TRUE(wait_until([&] { return fs::exists(victim_dir + "/" + frame_file_name(8, "png")); }, 120s))
+        << "the victim never reached frame 8";
+    slaves[2].kill(SIGKILL);
+    ASSERT_TRUE(slaves[2].wait_for(5s).has_value());
+
+    // The master drops it after the timeout; the others keep rendering.
+    auto dropped = [&] {
+        for (const auto& e : read_events(events_file))
+            if (e.value("event", "") == "channel_dropped" && e.value("channel", -1) == victim.id) return true;
+        return false;
+    };
+    ASSERT_TRUE(wait_until(dropped, 60s)) << test::read_text(dir + "/master.log");
+    // Let a few frames pass without it.
+    std::this_thread::sleep_for(800ms);
+    slaves[2] = start_slave(victim);
+
+    auto mrc = master.wait_for(240s);
+    ASSERT_TRUE(mrc.has_value()) << "master did not finish";
+    EXPECT_EQ(*mrc, 0) << test::read_text(dir + "/master.log");
+    for (auto& s : slaves) {
+        auto rc = s.wait_for(30s);
+        ASSERT_TRUE(rc.has_value()) << "a slave did not quit";
+        EXPECT_EQ(*rc, 0);
+    }
+
+    // Events: dropped at frame D, rejoined at frame J > D, then reported until the end.
+    uint64_t drop_frame = 0, join_frame = 0;
+    bool seen_drop = false, seen_rejoin = false;
+    std::vector<nlohmann::json> frame_events;
+    for (const auto& e : read_events(events_file)) {
+        const std::string kind = e.value("event", "");
+        if (kind == "channel_dropped" && e["channel"] == victim.id && !seen_drop) {
+            seen_drop = true;
+            drop_frame = e["frame"];
+        }
+        if (kind == "channel_joined" && e["channel"] == victim.id && seen_drop && !seen_rejoin) {
+            seen_rejoin = true;
+            join_frame = e["frame"];
+        }
+        if (kind == "frame") frame_events.push_back(e);
+    }
+    ASSERT_TRUE(seen_drop);
+    ASSERT_TRUE(seen_rejoin) << test::read_text(dir + "/master.log");
+    EXPECT_GT(join_frame, drop_frame);
+    EXPECT_LT(join_frame, static_cast<uint64_t>(frames - 1));
+    ASSERT_EQ(frame_events.size(), static_cast<size_t>(frames));
+
+    // The other channels rendered every frame, including while the victim was gone.
+    for (const auto& ch : cfg.channels) {
+        if (ch.id == victim.id) continue;
+        for (int f = 0; f < frames; ++f)
+            EXPECT_TRUE(fs::exists(dir + "/" + ch.name + "/" + frame_file_name(f, "png"))) << ch.name << " " << f;
+    }
+    // Frames between the drop and the rejoin went on without the victim...
+    int without = 0;
+    for (const auto& e : frame_events) {
+        const uint64_t f = e["frame"];
+        if (f > drop_frame && f < join_frame) {
+            EXPECT_FALSE(e["channels"].contains(std::to_string(victim.id))) << f;
+            EXPECT_EQ(e["channels"].size(), cfg.channels.size() - 1) << f;
+            ++without;
+        }
+    }
+    EXPECT_GE(without, 1);
+    // ...and the restarted victim rendered the current frame at its rejoin, with the same snapshot
+    // as everyone else, and every frame after it.
+    FrameMetadata vm, om;
+    read_image(victim_dir + "/" + frame_file_name(join_frame, "png"), &vm);
+    read_image(dir + "/" + cfg.channels[0].name + "/" + frame_file_name(join_frame, "png"), &om);
+    EXPECT_EQ(vm.snapshot_hash, om.snapshot_hash);
+    EXPECT_EQ(vm.frame, join_frame);
+    for (int f = static_cast<int>(join_frame); f < frames; ++f)
+        EXPECT_TRUE(fs::exists(victim_dir + "/" + frame_file_name(f, "png"))) << f;
+    for (const auto& e : frame_events) {
+        if (e["frame"].get<uint64_t>() > join_frame) {
+            EXPECT_TRUE(e["channels"].contains(std::to_string(victim.id))) << e.dump();
+        }
+    }
+}
