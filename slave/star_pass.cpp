@@ -21,12 +21,6 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     vertices_.upload(data);
 }
 
-int StarPass::subsamples(const ChannelFrustum& f, double sigma) {
-    // Largest pixel, in radians, is on the axis: one pixel spans (tl+tr)/width of tangent there.
-    const double pixel = std::max((f.tan_left() + f.tan_right()) / f.width(), (f.tan_down() + f.tan_up()) / f.height());
-    return std::clamp(static_cast<int>(std::ceil(pixel / sigma)), 1, 24);
-}
-
 void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
@@ -52,7 +46,6 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     program_.set("u_sigma", static_cast<float>(sigma));
     program_.set("u_tangents", view.tangents());
     program_.set("u_size", view.size());
-    program_.set("u_subsamples", subsamples(f, sigma));
     glEnable(GL_PROGRAM_POINT_SIZE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);

@@ -19,9 +19,6 @@ public:
     // Adds the stars brighter than magnitude_limit into the bound framebuffer.
     void draw(const ChannelView& view, double magnitude_limit);
 
-    // Per-axis subsample count for a channel (spacing at most sigma, at most 24).
-    static int subsamples(const ChannelFrustum& f, double sigma_rad);
-
 private:
     StarFieldConfig config_;
     std::vector<float> magnitudes_;  // ascending

@@ -92,3 +92,43 @@ TEST(SharedShading, BvColourHasUnitLuminanceAndGoesBlueToRed) {
     EXPECT_NEAR(sun.y, 1.0f, 0.25f);
     EXPECT_NEAR(sun.z, 1.0f, 0.35f);
 }
+
+TEST(SharedShading, ErfApproximationIsAccurate) {
+    for (double x = -4.0; x <= 4.0; x += 0.01)
+        EXPECT_NEAR(sh::erf_approx(static_cast<float>(x)), std::erf(x), 3e-7) << x;
+}
+
+TEST(SharedShading, StarBoxFractionsSumToOneAndMatchTheIntegral) {
+    // A star sampled by pixels much larger, comparable to and smaller than its sigma: the
+    // box fractions over a tiling sum to 1 (energy kept at any resolution), and the centroid of
+    // the fractions is the star's position to 2% of sigma when pixels resolve the PSF, and to the
+    // sampling limit (half a pixel) when the whole star falls in one or two pixels.
+    const float sigma = 1e-3f;
+    const sh::vec2 t(0.3f, -0.2f);
+    const sh::vec2 st = sh::star_tangent_sigma(t, sigma);
+    for (float pixel : {0.2f * sigma, sigma, 7.0f * sigma, 40.0f * sigma}) {
+        double sum = 0, cx = 0, cy = 0;
+        const int n = static_cast<int>(std::ceil(12.0 * sigma / pixel)) + 2;
+        // A grid whose pixel phase relative to the star is arbitrary (0.37 px).
+        const float x0 = t.x - (n + 0.37f) * pixel, y0 = t.y - (n + 0.61f) * pixel;
+        for (int j = 0; j < 2 * n + 2; ++j)
+            for (int i = 0; i < 2 * n + 2; ++i) {
+                sh::vec2 lo(x0 + i * pixel, y0 + j * pixel), hi(lo.x + pixel, lo.y + pixel);
+                double f = sh::star_box_fraction(t, st, lo, hi);
+                sum += f;
+                cx += f * (lo.x + 0.5 * pixel);
+                cy += f * (lo.y + 0.5 * pixel);
+            }
+        EXPECT_NEAR(sum, 1.0, 1e-4) << "pixel/sigma " << pixel / sigma;
+        const double tol = pixel <= sigma ? 0.02 * sigma : 0.5 * pixel;
+        EXPECT_NEAR(cx / sum, t.x, tol) << "pixel/sigma " << pixel / sigma;
+        EXPECT_NEAR(cy / sum, t.y, tol) << "pixel/sigma " << pixel / sigma;
+    }
+    // On the axis the tangent sigma is the angular sigma; off axis the radial one is smaller in
+    // angle per tangent unit, so the tangent sigma grows (cos^2 radially, cos tangentially).
+    const sh::vec2 on = sh::star_tangent_sigma(sh::vec2(0.0f, 0.0f), sigma);
+    EXPECT_NEAR(on.x, sigma, 1e-9);
+    const sh::vec2 off = sh::star_tangent_sigma(sh::vec2(1.0f, 0.0f), sigma);  // 45 degrees off axis
+    EXPECT_NEAR(off.x, sigma * 2.0f, 1e-6);                 // 1 / cos^2(45)
+    EXPECT_NEAR(off.y, sigma * std::sqrt(2.0f), 1e-6);      // 1 / cos(45)
+}
