@@ -55,6 +55,12 @@ int SlaveNode::run() {
             wire.send(PacketType::Hello, hello.last_frame, encode_hello(hello), {master});
             last_hello = now;
         }
+        // While idle between frames, a heartbeat every second tells the master we are alive.
+        if (last_frame && now - last_snapshot <= rejoin_after && now - last_snapshot > milliseconds(1000) &&
+            now - last_hello > milliseconds(1000)) {
+            wire.send(PacketType::Heartbeat, *last_frame, encode_hello(hello), {master});
+            last_hello = now;
+        }
         if (now - last_snapshot > std::chrono::seconds(options_.idle_timeout_s)) {
             spdlog::error("slave {}: no snapshot for {} s; is the master running? exiting", channel_.name,
                           options_.idle_timeout_s);
