@@ -6,6 +6,7 @@
 #include <chrono>
 #include <optional>
 
+#include "async_frame_writer.hpp"
 #include "egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "net/wire_endpoint.hpp"
@@ -35,6 +36,16 @@ int SlaveNode::run() {
     SceneRenderer renderer(cluster_, channel_, scene);
     WireEndpoint wire = open_slave_endpoint(cluster_, channel_, key);
     const sockaddr_in master = master_report_address(cluster_);
+    AsyncFrameWriter writer(options_.out_dir, options_.formats);
+    // On every way out: the frames already rendered reach the disk before the process ends.
+    auto finish = [&](int code) {
+        writer.flush();
+        if (writer.failed() > 0) {
+            spdlog::error("slave {}: {} frame(s) could not be written", channel_.name, writer.failed());
+            return code == 0 ? 4 : code;
+        }
+        return code;
+    };
 
     HelloMessage hello;
     hello.channel = static_cast<uint16_t>(channel_.id);
@@ -64,7 +75,7 @@ int SlaveNode::run() {
         if (now - last_snapshot > std::chrono::seconds(options_.idle_timeout_s)) {
             spdlog::error("slave {}: no snapshot for {} s; is the master running? exiting", channel_.name,
                           options_.idle_timeout_s);
-            return 3;
+            return finish(3);
         }
         auto rm = wire.receive(100);
         if (!rm) continue;
@@ -73,7 +84,7 @@ int SlaveNode::run() {
         if (m.type == PacketType::Quit) {
             spdlog::info("slave {}: master says quit after {} frames; {} snapshots missed, {} malformed; wire: {}",
                          channel_.name, frames, missed, malformed, wire.counters().summary());
-            return 0;
+            return finish(0);
         }
         if (m.type != PacketType::Snapshot) continue;
         const uint64_t received_ns = monotonic_ns();
@@ -110,15 +121,15 @@ int SlaveNode::run() {
         meta.sim_time_s = snap.sim_time_s;
         meta.snapshot_hash = hash;
         meta.renderer = gl.info().renderer;
-        write_frame(options_.out_dir, image, meta, options_.formats, snap.settings.exposure);
-        const auto t2 = Clock::now();
+        // Encoding overlaps the next frame's render; write_ms is the time spent waiting for room.
+        const double wait_ms = writer.submit(std::move(image), std::move(meta), snap.settings.exposure);
 
         FrameReport rep;
         rep.channel = static_cast<uint16_t>(channel_.id);
         rep.frame = snap.frame;
         rep.snapshot_hash = hash;
         rep.render_ms = std::chrono::duration<float, std::milli>(t1 - t0).count();
-        rep.write_ms = std::chrono::duration<float, std::milli>(t2 - t1).count();
+        rep.write_ms = static_cast<float>(wait_ms);
         rep.packets_rejected = wire.counters().total_rejected() + malformed;
         rep.snapshots_missed = missed;
         rep.snapshot_received_ns = received_ns;
@@ -126,10 +137,10 @@ int SlaveNode::run() {
         last_report = rep;
         last_frame = snap.frame;
         ++frames;
-        spdlog::debug("slave {}: frame {} rendered in {:.1f} ms, written in {:.1f} ms", channel_.name, rep.frame,
+        spdlog::debug("slave {}: frame {} rendered in {:.1f} ms, queued for writing after {:.1f} ms", channel_.name, rep.frame,
                       rep.render_ms, rep.write_ms);
     }
-    return 0;
+    return finish(0);
 }
 
 }  // namespace cupola

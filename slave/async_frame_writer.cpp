@@ -1,0 +1,73 @@
+#include "async_frame_writer.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+namespace cupola {
+
+AsyncFrameWriter::AsyncFrameWriter(std::string dir, std::vector<std::string> formats, size_t max_queued)
+    : dir_(std::move(dir)), formats_(std::move(formats)), max_queued_(std::max<size_t>(1, max_queued)) {
+    thread_ = std::thread([this] { run(); });
+}
+
+AsyncFrameWriter::~AsyncFrameWriter() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+}
+
+double AsyncFrameWriter::submit(Image image, FrameMetadata meta, double exposure) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return queue_.size() < max_queued_; });
+    queue_.push_back(Job{std::move(image), std::move(meta), exposure});
+    lock.unlock();
+    changed_.notify_all();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void AsyncFrameWriter::flush() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return queue_.empty() && !busy_; });
+}
+
+uint64_t AsyncFrameWriter::written() const {
+    std::lock_guard lock(mutex_);
+    return written_;
+}
+
+uint64_t AsyncFrameWriter::failed() const {
+    std::lock_guard lock(mutex_);
+    return failed_;
+}
+
+void AsyncFrameWriter::run() {
+    for (;;) {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [&] { return !queue_.empty() || stopping_; });
+        if (queue_.empty()) return;  // stopping, and everything is written
+        Job job = std::move(queue_.front());
+        queue_.pop_front();
+        busy_ = true;
+        lock.unlock();
+        changed_.notify_all();  // room in the queue
+        bool ok = true;
+        try {
+            write_frame(dir_, job.image, job.meta, formats_, job.exposure);
+        } catch (const std::exception& e) {
+            ok = false;
+            spdlog::error("frame {} of channel {} was not written: {}", job.meta.frame, job.meta.channel_name, e.what());
+        }
+        lock.lock();
+        busy_ = false;
+        ++(ok ? written_ : failed_);
+        lock.unlock();
+        changed_.notify_all();
+    }
+}
+
+}  // namespace cupola
