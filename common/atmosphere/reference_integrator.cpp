@@ -1,0 +1,487 @@
+#include "atmosphere/reference_integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+#include "atmosphere/atmosphere_geometry.hpp"
+
+namespace cupola::atmosphere {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// 5-point Gauss-Legendre on [-1, 1].
+constexpr double kGlX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                            0.9061798459386640};
+constexpr double kGlW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                            0.2369268850561891};
+
+// xoshiro256** (Blackman & Vigna 2018), seeded through splitmix64.
+class Rng {
+public:
+    Rng(std::uint64_t seed, std::uint64_t stream) {
+        std::uint64_t x = seed * 0x9E3779B97F4A7C15ull ^ (stream + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
+        for (auto& s : s_) s = splitmix(x);
+    }
+    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+
+private:
+    static std::uint64_t splitmix(std::uint64_t& x) {
+        std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+    std::uint64_t next() {
+        const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+        const std::uint64_t t = s_[1] << 17;
+        s_[2] ^= s_[0];
+        s_[3] ^= s_[1];
+        s_[1] ^= s_[2];
+        s_[0] ^= s_[3];
+        s_[2] ^= t;
+        s_[3] = rotl(s_[3], 45);
+        return result;
+    }
+    std::uint64_t s_[4];
+};
+
+// An orthonormal frame around unit w; returns w rotated so that its polar angle is acos(cos_t).
+glm::dvec3 direction_around(const glm::dvec3& w, double cos_t, double phi) {
+    const glm::dvec3 a = std::abs(w.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(a, w));
+    const glm::dvec3 v = glm::cross(w, u);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    return glm::normalize(sin_t * std::cos(phi) * u + sin_t * std::sin(phi) * v + cos_t * w);
+}
+
+// Inverse CDF of the Rayleigh phase function in nu: nu^3 + 3 nu = 8 u - 4 (Cardano, one real root).
+double sample_rayleigh_nu(double u) {
+    const double q = 8.0 * u - 4.0;
+    const double s = std::sqrt(0.25 * q * q + 1.0);
+    return std::clamp(std::cbrt(0.5 * q + s) + std::cbrt(0.5 * q - s), -1.0, 1.0);
+}
+
+double sample_hg_nu(double g, double u) {
+    if (std::abs(g) < 1e-4) return 2.0 * u - 1.0;
+    const double f = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    return std::clamp((1.0 + g * g - f * f) / (2.0 * g), -1.0, 1.0);
+}
+
+}  // namespace
+
+double rayleigh_phase(double nu) { return 3.0 / (16.0 * kPi) * (1.0 + nu * nu); }
+
+double cornette_shanks_phase(double g, double nu) {
+    const double g2 = g * g;
+    const double denom = std::max(1.0 + g2 - 2.0 * g * nu, 1e-300);
+    return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + nu * nu) / ((2.0 + g2) * denom * std::sqrt(denom));
+}
+
+double henyey_greenstein_phase(double g, double nu) {
+    const double g2 = g * g;
+    const double denom = std::max(1.0 + g2 - 2.0 * g * nu, 1e-300);
+    return (1.0 - g2) / (4.0 * kPi * denom * std::sqrt(denom));
+}
+
+std::vector<double> default_wavelengths() {
+    std::vector<double> w;
+    for (int l = 360; l <= 830; l += 10) w.push_back(l);
+    return w;
+}
+
+struct ReferenceIntegrator::Segment {
+    glm::dvec3 o{0.0}, v{0.0};
+    double length = 0.0;
+    std::vector<double> t;         // panel boundaries, t.front() = 0, t.back() = length
+    std::vector<glm::dvec3> cum;   // column densities from 0 to t[i]
+};
+
+ReferenceIntegrator::ReferenceIntegrator(AtmosphereParameters params, ReferenceSettings settings)
+    : params_(std::move(params)), settings_(std::move(settings)), color_(settings_.wavelengths_nm) {
+    if (!(params_.top_radius > params_.bottom_radius) || !(params_.bottom_radius > 0.0))
+        throw std::invalid_argument("AtmosphereParameters: need 0 < bottom_radius < top_radius");
+    if (settings_.scattering_orders < 1) throw std::invalid_argument("ReferenceSettings: scattering_orders >= 1");
+    if (!(settings_.panel_height_m > 0.0) || !(settings_.ms_panel_height_m > 0.0))
+        throw std::invalid_argument("ReferenceSettings: panel heights must be > 0");
+    if (settings_.ms_first_order < 1 || settings_.ms_first_order > 2)
+        throw std::invalid_argument("ReferenceSettings: ms_first_order is 1 or 2");
+    for (double l : settings_.wavelengths_nm) {
+        beta_r_.push_back(params_.rayleigh_scattering(l));
+        beta_ms_.push_back(params_.mie_scattering(l));
+        beta_me_.push_back(params_.mie_extinction(l));
+        beta_o_.push_back(params_.ozone_absorption(l));
+        sun_.push_back(params_.solar_irradiance(l));
+        albedo_.push_back(params_.ground_albedo(l));
+    }
+}
+
+glm::dvec3 ReferenceIntegrator::densities(const glm::dvec3& p) const {
+    const double r = glm::length(p);
+    if (r > params_.top_radius) return glm::dvec3(0.0);
+    const double h = r - params_.bottom_radius;
+    return {params_.rayleigh_density(h), params_.mie_density(h), params_.ozone_density(h)};
+}
+
+ReferenceIntegrator::Segment ReferenceIntegrator::make_segment(const glm::dvec3& origin, const glm::dvec3& dir,
+                                                               double length, double panel_h,
+                                                               const std::vector<double>& extra_splits) const {
+    Segment s;
+    s.o = origin;
+    s.v = dir;
+    s.length = std::max(length, 0.0);
+    std::vector<double> splits = {0.0, s.length};
+    const double b = glm::dot(origin, dir);
+    const double c = glm::dot(origin, origin);
+    splits.push_back(-b);  // closest approach to the centre
+    for (double h : {params_.ozone_bottom, params_.ozone_peak, params_.ozone_top, params_.top_radius -
+                                                                                       params_.bottom_radius}) {
+        const double rk = params_.bottom_radius + h;
+        const double disc = b * b - c + rk * rk;
+        if (disc < 0.0) continue;
+        const double sq = std::sqrt(disc);
+        splits.push_back(-b - sq);
+        splits.push_back(-b + sq);
+    }
+    splits.insert(splits.end(), extra_splits.begin(), extra_splits.end());
+    std::erase_if(splits, [&](double t) { return !(t >= 0.0 && t <= s.length); });
+    std::sort(splits.begin(), splits.end());
+    const double merge = 1e-9 * std::max(1.0, s.length);
+    s.t.push_back(0.0);
+    for (std::size_t k = 1; k < splits.size(); ++k) {
+        const double end = splits[k];
+        double t = s.t.back();
+        if (end - t <= merge) continue;
+        while (end - t > merge) {
+            const glm::dvec3 p = origin + t * dir;
+            const double r = glm::length(p);
+            const double h = std::max(r - params_.bottom_radius, 0.0);
+            const double mu = r > 0.0 ? glm::dot(p, dir) / r : 1.0;
+            const double dh = panel_h * (1.0 + h / 10000.0);
+            double dt = std::min(dh / std::max(std::abs(mu), 1e-12), std::sqrt(2.0 * r * dh));
+            dt = std::max(dt, 1e-3 * panel_h);
+            double next = t + dt;
+            if (next > end - 0.2 * dt) next = end;  // no sliver panel at the end of a piece
+            s.t.push_back(next);
+            t = next;
+        }
+    }
+    if (s.t.size() == 1) s.t.push_back(s.length);  // zero-length segment: one empty panel
+    s.cum.assign(s.t.size(), glm::dvec3(0.0));
+    for (std::size_t i = 1; i < s.t.size(); ++i) {
+        const double a = s.t[i - 1], half = 0.5 * (s.t[i] - a), mid = a + half;
+        glm::dvec3 sum(0.0);
+        for (int k = 0; k < 5; ++k) sum += kGlW[k] * densities(origin + (mid + half * kGlX[k]) * dir);
+        s.cum[i] = s.cum[i - 1] + half * sum;
+    }
+    return s;
+}
+
+glm::dvec3 ReferenceIntegrator::segment_column(const Segment& s, double t) const {
+    t = std::clamp(t, 0.0, s.length);
+    std::size_t i = static_cast<std::size_t>(std::upper_bound(s.t.begin(), s.t.end(), t) - s.t.begin());
+    i = std::clamp<std::size_t>(i, 1, s.t.size() - 1) - 1;  // panel [t[i], t[i+1]]
+    const double a = s.t[i];
+    if (t <= a) return s.cum[i];
+    const double half = 0.5 * (t - a), mid = a + half;
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 5; ++k) sum += kGlW[k] * densities(s.o + (mid + half * kGlX[k]) * s.v);
+    return s.cum[i] + half * sum;
+}
+
+double ReferenceIntegrator::sample_segment(const Segment& s, const glm::dvec3& sigma, double tau) const {
+    // Panel containing the target optical depth, then safeguarded Newton within it.
+    std::size_t i = 1;
+    while (i + 1 < s.t.size() && glm::dot(sigma, s.cum[i]) < tau) ++i;
+    double lo = s.t[i - 1], hi = s.t[i];
+    const double tau_lo = glm::dot(sigma, s.cum[i - 1]), tau_hi = glm::dot(sigma, s.cum[i]);
+    double t = tau_hi > tau_lo ? lo + (hi - lo) * std::clamp((tau - tau_lo) / (tau_hi - tau_lo), 0.0, 1.0)
+                               : 0.5 * (lo + hi);
+    for (int it = 0; it < 60; ++it) {
+        const double f = glm::dot(sigma, segment_column(s, t)) - tau;
+        if (f > 0.0) hi = t; else lo = t;
+        const double df = glm::dot(sigma, densities(s.o + t * s.v));
+        double next = df > 0.0 ? t - f / df : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (std::abs(next - t) <= 1e-9 * (1.0 + std::abs(t)) || hi - lo <= 1e-9 * (1.0 + hi)) return next;
+        t = next;
+    }
+    return t;
+}
+
+glm::dvec3 ReferenceIntegrator::column_density(double r, double mu, double length) const {
+    const double m = std::clamp(mu, -1.0, 1.0);
+    const glm::dvec3 o(0.0, 0.0, r);
+    const glm::dvec3 v(std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m))), 0.0, m);
+    return make_segment(o, v, length, settings_.panel_height_m, {}).cum.back();
+}
+
+std::vector<double> ReferenceIntegrator::optical_depth(double r, double mu, double length) const {
+    const glm::dvec3 d = column_density(r, mu, length);
+    std::vector<double> tau(beta_r_.size());
+    for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = beta_r_[k] * d.x + beta_me_[k] * d.y + beta_o_[k] * d.z;
+    return tau;
+}
+
+std::vector<double> ReferenceIntegrator::transmittance(double r, double mu) const {
+    const double rc = std::clamp(r, params_.bottom_radius, params_.top_radius);
+    auto tau = optical_depth(rc, mu, distance_to_nearest_boundary(rc, mu, params_.bottom_radius, params_.top_radius));
+    for (double& x : tau) x = std::exp(-x);
+    return tau;
+}
+
+void ReferenceIntegrator::sun_transmittance(const glm::dvec3& p, const glm::dvec3& sun, double panel_h,
+                                            std::vector<double>& out) const {
+    out.assign(beta_r_.size(), 0.0);
+    const double r = std::clamp(glm::length(p), params_.bottom_radius, params_.top_radius);
+    const double mu_s = glm::dot(p, sun) / std::max(glm::length(p), 1e-300);
+    if (ray_hits_ground(r, mu_s, params_.bottom_radius)) return;
+    const Segment s = make_segment(p, sun, distance_to_top(r, mu_s, params_.top_radius), panel_h, {});
+    const glm::dvec3 d = s.cum.back();
+    for (std::size_t k = 0; k < out.size(); ++k)
+        out[k] = std::exp(-(beta_r_[k] * d.x + beta_me_[k] * d.y + beta_o_[k] * d.z));
+}
+
+void ReferenceIntegrator::single_scattering(const glm::dvec3& o, const glm::dvec3& v, double length,
+                                            bool hits_ground, const glm::dvec3& sun, SkyRadiance& out) const {
+    const std::size_t n = beta_r_.size();
+    out.single_spectrum.assign(n, 0.0);
+    out.ground_spectrum.assign(n, 0.0);
+    // Split where the ray crosses the shadow cylinder |p - (p.s) s| = R (sunlit/shadowed boundary).
+    std::vector<double> splits;
+    {
+        const double vs = glm::dot(v, sun), os = glm::dot(o, sun);
+        const double A = 1.0 - vs * vs;
+        const double B = 2.0 * (glm::dot(o, v) - os * vs);
+        const double C = glm::dot(o, o) - os * os - params_.bottom_radius * params_.bottom_radius;
+        const double disc = B * B - 4.0 * A * C;
+        if (A > 1e-14 && disc >= 0.0) {
+            const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+            splits.push_back(q / A);
+            if (q != 0.0) splits.push_back(C / q);
+        }
+    }
+    const Segment s = make_segment(o, v, length, settings_.panel_height_m, splits);
+    const double nu = glm::dot(v, sun);
+    const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(params_.mie_g, nu);
+    std::vector<double> ts;
+    for (std::size_t i = 1; i < s.t.size(); ++i) {
+        const double a = s.t[i - 1], half = 0.5 * (s.t[i] - a), mid = a + half;
+        if (half <= 0.0) continue;
+        for (int k = 0; k < 5; ++k) {
+            const double t = mid + half * kGlX[k];
+            const glm::dvec3 p = o + t * v;
+            const glm::dvec3 rho = densities(p);
+            if (rho.x <= 0.0 && rho.y <= 0.0) continue;
+            sun_transmittance(p, sun, settings_.panel_height_m, ts);
+            const glm::dvec3 col = segment_column(s, t);
+            const double w = kGlW[k] * half;
+            for (std::size_t j = 0; j < n; ++j) {
+                if (ts[j] <= 0.0) continue;
+                const double tv = std::exp(-(beta_r_[j] * col.x + beta_me_[j] * col.y + beta_o_[j] * col.z));
+                out.single_spectrum[j] +=
+                    w * tv * ts[j] * sun_[j] * (beta_r_[j] * rho.x * pr + beta_ms_[j] * rho.y * pm);
+            }
+        }
+    }
+    if (hits_ground) {
+        const glm::dvec3 g = o + length * v;
+        const glm::dvec3 normal = glm::normalize(g);
+        const double mu_s = glm::dot(normal, sun);
+        if (mu_s > 0.0) {
+            sun_transmittance(normal * params_.bottom_radius, sun, settings_.panel_height_m, ts);
+            const glm::dvec3 col = s.cum.back();
+            for (std::size_t j = 0; j < n; ++j) {
+                const double tv = std::exp(-(beta_r_[j] * col.x + beta_me_[j] * col.y + beta_o_[j] * col.z));
+                out.ground_spectrum[j] = tv * albedo_[j] / kPi * mu_s * ts[j] * sun_[j];
+            }
+        }
+    }
+}
+
+void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const glm::dvec3& view, double length,
+                                              bool hits_ground, const glm::dvec3& sun, SkyRadiance& out) const {
+    const std::size_t n = beta_r_.size();
+    const int max_order = settings_.scattering_orders;
+    const int first = settings_.ms_first_order;
+    const int paths = std::max(settings_.ms_paths, 0);
+    out.multiple_spectrum.assign(n, 0.0);
+    out.multiple_stderr.assign(n, 0.0);
+    out.ms_paths = paths;
+    if (max_order < first || paths == 0) return;
+
+    const double R = params_.bottom_radius, top = params_.top_radius;
+    const double ph = settings_.ms_panel_height_m;
+    const double g = params_.mie_g;
+    std::vector<double> sum(n, 0.0), sumsq(n, 0.0), contrib(n), thr(n), tau(n), ts(n);
+    glm::dvec3 rgb_sum(0.0), rgb_sumsq(0.0);
+    double lum_sum = 0.0, lum_sumsq = 0.0;
+    const double inv_n = 1.0 / static_cast<double>(n);
+
+    for (int path = 0; path < paths; ++path) {
+        Rng rng(settings_.seed, static_cast<std::uint64_t>(path));
+        std::fill(contrib.begin(), contrib.end(), 0.0);
+        std::fill(thr.begin(), thr.end(), 1.0);
+        glm::dvec3 p = camera, w = view;
+        for (int order = 1; order <= max_order; ++order) {
+            const double r = glm::length(p);
+            const double mu = glm::dot(p, w) / r;
+            // The view ray keeps the ground decision and length sky() made for it (one decision
+            // per ray, hard case 1); later segments decide from their own origin.
+            const bool ground = order == 1 ? hits_ground : ray_hits_ground(r, mu, R);
+            const double len = order == 1 ? length
+                               : ground   ? distance_to_ground(r, mu, R)
+                                          : distance_to_top(std::min(r, top), mu, top);
+            const Segment s = make_segment(p, w, len, ph, {});
+            const glm::dvec3 dl = s.cum.back();
+            for (std::size_t k = 0; k < n; ++k) tau[k] = beta_r_[k] * dl.x + beta_me_[k] * dl.y + beta_o_[k] * dl.z;
+            const std::size_t hero = std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
+            const glm::dvec3 sig_h(beta_r_[hero], beta_me_[hero], beta_o_[hero]);
+            // Segments ending on the ground: choose the ground with probability alpha (the mean
+            // transmittance, kept in [0.05, 0.95] so that neither branch becomes a rare event, e.g.
+            // a camera 1 m above the ground looking down); otherwise, and on segments that leave
+            // the atmosphere, a collision is forced inside [0, len].
+            double alpha = 0.0;
+            if (ground) {
+                for (std::size_t k = 0; k < n; ++k) alpha += std::exp(-tau[k]);
+                alpha = std::clamp(alpha * inv_n, 0.05, 0.95);
+            }
+            const bool surface = ground && rng.uniform() < alpha;
+            const double u = rng.uniform();
+            double t = 0.0;
+            if (!surface) {
+                if (!(tau[hero] > 0.0)) break;
+                const double target = -std::log1p(u * std::expm1(-tau[hero]));  // truncated to [0, tau]
+                t = sample_segment(s, sig_h, std::min(target, tau[hero]));
+            }
+            if (surface) {
+                for (std::size_t k = 0; k < n; ++k) thr[k] *= std::exp(-tau[k]) / alpha;
+                const glm::dvec3 normal = glm::normalize(p + len * w);
+                p = normal * R;
+                const double mu_s = glm::dot(normal, sun);
+                if (order >= first && mu_s > 0.0) {
+                    sun_transmittance(p, sun, ph, ts);
+                    for (std::size_t k = 0; k < n; ++k)
+                        contrib[k] += thr[k] * albedo_[k] / kPi * mu_s * ts[k] * sun_[k];
+                }
+                if (order == max_order) break;
+                // Cosine-weighted hemisphere: f cos / pdf = albedo.
+                const double u1 = rng.uniform(), u2 = rng.uniform();
+                w = direction_around(normal, std::sqrt(1.0 - u1), 2.0 * kPi * u2);
+                for (std::size_t k = 0; k < n; ++k) thr[k] *= albedo_[k];
+                continue;
+            }
+            // Volume collision at t.
+            const glm::dvec3 x = p + t * w;
+            const glm::dvec3 col = segment_column(s, t);
+            const glm::dvec3 rho = densities(x);
+            double pdf = 0.0;
+            for (std::size_t k = 0; k < n; ++k) {
+                const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
+                const double sk = beta_r_[k] * rho.x + beta_me_[k] * rho.y + beta_o_[k] * rho.z;
+                const double norm = -std::expm1(-tau[k]);
+                if (norm > 0.0) pdf += sk * std::exp(-tk) / norm;
+            }
+            pdf *= inv_n * (1.0 - alpha);
+            if (!(pdf > 0.0)) break;
+            for (std::size_t k = 0; k < n; ++k) {
+                const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
+                thr[k] *= std::exp(-tk) / pdf;
+            }
+            p = x;
+            if (order >= first) {
+                sun_transmittance(p, sun, ph, ts);
+                const double nu = glm::dot(w, sun);
+                const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(g, nu);
+                for (std::size_t k = 0; k < n; ++k)
+                    contrib[k] += thr[k] * (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) * ts[k] * sun_[k];
+            }
+            if (order == max_order) break;
+            // New direction from the Rayleigh / HG mixture.
+            double sr = 0.0, sm = 0.0;
+            for (std::size_t k = 0; k < n; ++k) {
+                sr += beta_r_[k] * rho.x;
+                sm += beta_ms_[k] * rho.y;
+            }
+            if (!(sr + sm > 0.0)) break;
+            const double q = sr / (sr + sm);
+            const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+            const double nu = u1 < q ? sample_rayleigh_nu(u2) : sample_hg_nu(g, u2);
+            const glm::dvec3 w_new = direction_around(w, nu, 2.0 * kPi * u3);
+            const double c = glm::dot(w, w_new);
+            const double dir_pdf = q * rayleigh_phase(c) + (1.0 - q) * henyey_greenstein_phase(g, c);
+            if (!(dir_pdf > 0.0)) break;
+            const double pr = rayleigh_phase(c), pm = cornette_shanks_phase(g, c);
+            for (std::size_t k = 0; k < n; ++k)
+                thr[k] *= (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) / dir_pdf;
+            w = w_new;
+        }
+        for (std::size_t k = 0; k < n; ++k) {
+            sum[k] += contrib[k];
+            sumsq[k] += contrib[k] * contrib[k];
+        }
+        const glm::dvec3 c = color_.rgb(contrib);
+        const double l = color_.luminance(contrib);
+        rgb_sum += c;
+        rgb_sumsq += c * c;
+        lum_sum += l;
+        lum_sumsq += l * l;
+    }
+    const double m = static_cast<double>(paths);
+    auto stderr_of = [m](double s, double s2) {
+        if (m < 2.0) return 0.0;
+        const double mean = s / m;
+        return std::sqrt(std::max(0.0, (s2 - m * mean * mean) / (m - 1.0)) / m);
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+        out.multiple_spectrum[k] = sum[k] / m;
+        out.multiple_stderr[k] = stderr_of(sum[k], sumsq[k]);
+    }
+    out.multiple_rgb = rgb_sum / m;
+    out.multiple_rgb_stderr = {stderr_of(rgb_sum.x, rgb_sumsq.x), stderr_of(rgb_sum.y, rgb_sumsq.y),
+                               stderr_of(rgb_sum.z, rgb_sumsq.z)};
+    out.multiple_luminance = lum_sum / m;
+    out.multiple_luminance_stderr = stderr_of(lum_sum, lum_sumsq);
+}
+
+SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {
+    const std::size_t n = beta_r_.size();
+    SkyRadiance out;
+    out.spectrum.assign(n, 0.0);
+    out.single_spectrum.assign(n, 0.0);
+    out.ground_spectrum.assign(n, 0.0);
+    out.multiple_spectrum.assign(n, 0.0);
+    out.multiple_stderr.assign(n, 0.0);
+    const double R = params_.bottom_radius, top = params_.top_radius;
+    const double deg = kPi / 180.0;
+    const double tv = q.view_zenith_deg * deg, ts = q.sun_zenith_deg * deg, phi = q.relative_azimuth_deg * deg;
+    const glm::dvec3 view(std::sin(tv), 0.0, std::cos(tv));
+    const glm::dvec3 sun(std::sin(ts) * std::cos(phi), std::sin(ts) * std::sin(phi), std::cos(ts));
+    const double r_cam = std::max(R + q.altitude_m, R + kMinCameraAltitude);
+    const RayEntry e = enter_atmosphere(r_cam, view.z, R, top);
+    if (!e.intersects) {
+        out.in_atmosphere = false;
+        return out;
+    }
+    const glm::dvec3 o = glm::dvec3(0.0, 0.0, r_cam) + e.offset * view;
+    out.hits_ground = ray_hits_ground(e.r, e.mu, R);
+    const double length = out.hits_ground ? distance_to_ground(e.r, e.mu, R) : distance_to_top(e.r, e.mu, top);
+    single_scattering(o, view, length, out.hits_ground, sun, out);
+    multiple_scattering(o, view, length, out.hits_ground, sun, out);
+    for (std::size_t k = 0; k < n; ++k)
+        out.spectrum[k] = settings_.ms_first_order == 1
+                              ? out.multiple_spectrum[k]
+                              : out.single_spectrum[k] + out.ground_spectrum[k] + out.multiple_spectrum[k];
+    out.xyz = color_.xyz(out.spectrum);
+    out.rgb = xyz_to_linear_srgb(out.xyz);
+    out.luminance = out.xyz.y;
+    out.single_luminance = color_.luminance(out.single_spectrum);
+    out.ground_luminance = color_.luminance(out.ground_spectrum);
+    return out;
+}
+
+}  // namespace cupola::atmosphere
