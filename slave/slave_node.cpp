@@ -99,6 +99,11 @@ int SlaveNode::run() {
         try {
             snap = decode_snapshot(m.payload.data(), m.payload.size());
             if (snap.frame != m.frame) throw WireError("snapshot frame differs from its packet header");
+            for (const auto& b : snap.bodies)
+                if (b.id >= scene.bodies.size())
+                    throw WireError("body id " + std::to_string(b.id) + " is not in the scene " + scene.file + " (" +
+                                    std::to_string(scene.bodies.size()) +
+                                    " bodies): do the master and this slave use the same scene file?");
         } catch (const WireError& e) {
             ++malformed;
             spdlog::warn("slave {}: malformed snapshot for frame {} dropped: {} ({} so far)", channel_.name, m.frame,
