@@ -5,6 +5,7 @@
 
 #include "config/cluster_config.hpp"
 #include "config/json_reader.hpp"
+#include "atmosphere/production_quality.hpp"
 
 namespace cupola {
 
@@ -15,6 +16,36 @@ const BodyConfig* SceneConfig::find(const std::string& name) const {
         if (b.name == name) return &b;
     return nullptr;
 }
+
+namespace {
+AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
+    AtmosphereConfig c;
+    c.present = true;
+    c.preset = a.one_of("preset", {"earth", "mars"});
+    c.parameters = c.preset == "earth" ? atmosphere::AtmosphereParameters::earth() : atmosphere::AtmosphereParameters::mars();
+    c.model = a.one_of("model", atmosphere::production_quality_names(), c.model);
+    atmosphere::AtmosphereParameters& p = c.parameters;
+    // The ground is the body's surface; the shell keeps the preset's thickness unless overridden.
+    const double thickness = a.number_in("top_altitude_m", 1000.0, 1.0e6, p.top_radius - p.bottom_radius);
+    p.name = body.name;
+    p.bottom_radius = body.radius_m;
+    p.top_radius = body.radius_m + thickness;
+    p.rayleigh_scale_height = a.number_in("rayleigh_scale_height_m", 10.0, 1.0e5, p.rayleigh_scale_height);
+    p.mie_extinction_at_550nm = a.number_in("mie_extinction_at_550nm", 0.0, 1.0e-2, p.mie_extinction_at_550nm);
+    p.mie_scale_height = a.number_in("mie_scale_height_m", 10.0, 1.0e5, p.mie_scale_height);
+    p.mie_g = a.number_in("mie_g", -0.99, 0.99, p.mie_g);
+    if (a.has("mie_single_scattering_albedo"))
+        p.mie_single_scattering_albedo =
+            atmosphere::SpectralCurve::constant(a.number_in("mie_single_scattering_albedo", 0.0, 1.0));
+    p.ozone_column_dobson = a.number_in("ozone_column_dobson", 0.0, 2000.0, p.ozone_column_dobson);
+    if (a.has("ground_albedo")) p.ground_albedo = atmosphere::SpectralCurve::constant(a.number_in("ground_albedo", 0.0, 1.0));
+    if (p.mie_scale_height >= thickness || p.rayleigh_scale_height >= thickness)
+        a.fail("top_altitude_m", "the atmosphere (" + std::to_string(thickness) +
+                                     " m) must be thicker than its scale heights");
+    a.reject_unknown_keys();
+    return c;
+}
+}  // namespace
 
 SceneConfig load_scene_config(const std::string& file) {
     SceneConfig s;
@@ -47,7 +78,11 @@ SceneConfig load_scene_config(const std::string& file) {
         if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
         c.albedo = b.number_in("albedo", 0.0, 1.0, c.albedo);
         c.limb_darkening_u = b.number_in("limb_darkening_u", 0.0, 1.0, c.limb_darkening_u);
-        c.radiance = b.number_in("radiance", 0.0, 6.0e4, c.radiance);
+        c.radiance = b.number_in("radiance", 0.0, 1.0e12, c.radiance);
+        if (auto a = b.optional_child("atmosphere")) {
+            if (c.kind == BodyKind::Star) a->fail("preset", "a star cannot have an atmosphere");
+            c.atmosphere = read_atmosphere(*a, c);
+        }
         b.reject_unknown_keys();
         s.bodies.push_back(c);
     }

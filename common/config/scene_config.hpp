@@ -5,9 +5,20 @@
 #include <string>
 #include <vector>
 
+#include "atmosphere/atmosphere_parameters.hpp"
+
 namespace cupola {
 
 enum class BodyKind { Star, Planet, Moon };
+
+// A body's atmosphere: a physical preset ("earth", "mars") with optional overrides, resolved to
+// full parameters whose ground is the body's radius; and the production model's quality level.
+struct AtmosphereConfig {
+    bool present = false;
+    std::string preset;
+    std::string model = "medium";  // atmosphere::production_quality() name
+    atmosphere::AtmosphereParameters parameters;
+};
 
 struct BodyConfig {
     uint16_t id = 0;            // index in SceneConfig::bodies; the snapshot refers to bodies by it
@@ -20,6 +31,7 @@ struct BodyConfig {
     double albedo = 0.3;        // planets and moons
     double limb_darkening_u = 0.6;  // stars: linear limb-darkening coefficient
     double radiance = 1.0e3;    // stars: disc-centre radiance in scene units (planets are lit by it)
+    AtmosphereConfig atmosphere;  // planets and moons
 };
 
 struct StarFieldConfig {

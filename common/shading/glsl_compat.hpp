@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <vector>
 
 namespace cupola::shading {
 
@@ -79,6 +80,30 @@ glm::vec<L, float> min(const glm::vec<L, float>& v, double s) { return glm::min(
 template <glm::length_t L>
 glm::vec<L, float> clamp(const glm::vec<L, float>& v, double lo, double hi) {
     return glm::clamp(v, static_cast<float>(lo), static_cast<float>(hi));
+}
+
+// Textures for the shared code: a CPU image with GL's sampling rules (bilinear, clamp to edge,
+// texel centres at (i + 0.5) / n), so tables sampled on the CPU read what the GPU reads.
+struct Texture2DData {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> texels;  // row-major, row 0 at v = 0
+    const glm::vec4& at(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
+};
+// The GLSL sampler2D: a non-owning handle, cheap to pass by value like its GLSL namesake.
+struct sampler2D {
+    const Texture2DData* data = nullptr;
+};
+inline vec4 textureLod(sampler2D s, vec2 uv, double /*lod*/) {
+    const Texture2DData& t = *s.data;
+    const float x = uv.x * static_cast<float>(t.width) - 0.5f;
+    const float y = uv.y * static_cast<float>(t.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    auto cx = [&](float i) { return static_cast<int>(std::fmin(std::fmax(i, 0.0f), static_cast<float>(t.width - 1))); };
+    auto cy = [&](float i) { return static_cast<int>(std::fmin(std::fmax(i, 0.0f), static_cast<float>(t.height - 1))); };
+    const int x0 = cx(fx), x1 = cx(fx + 1.0f), y0 = cy(fy), y1 = cy(fy + 1.0f);
+    return glm::mix(glm::mix(t.at(x0, y0), t.at(x1, y0), ax), glm::mix(t.at(x0, y1), t.at(x1, y1), ax), ay);
 }
 
 }  // namespace cupola::shading

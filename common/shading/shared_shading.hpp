@@ -4,6 +4,8 @@
 #include "shading/glsl_compat.hpp"
 
 namespace cupola::shading {
+// Data types first, outside the anonymous namespace: one type in every translation unit.
+#include "shared/atmosphere_types.glsl"
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -15,6 +17,13 @@ namespace {
 #include "shared/star_psf.glsl"
 #include "shared/star_color.glsl"
 #include "shared/sphere_view.glsl"
+#include "shared/atmosphere_params.glsl"
+#include "shared/atmosphere_geometry.glsl"
+#include "shared/atmosphere_lut_mapping.glsl"
+#include "shared/atmosphere_tables.glsl"
+#include "shared/atmosphere_sky.glsl"
+#include "shared/atmosphere_analytic.glsl"
+#include "shared/atmosphere_color.glsl"
 }  // namespace
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
@@ -23,7 +32,14 @@ namespace {
 
 namespace cupola {
 // The shared files in the order a shader needs them prepended (after its #version line).
-inline const char* const kSharedShadingFiles[] = {"shared/constants.glsl", "shared/limb_darkening.glsl",
+inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl", "shared/constants.glsl", "shared/limb_darkening.glsl",
                                                   "shared/star_psf.glsl", "shared/star_color.glsl",
-                                                  "shared/sphere_view.glsl"};
+                                                  "shared/sphere_view.glsl",
+                                                  "shared/atmosphere_params.glsl",
+                                                  "shared/atmosphere_geometry.glsl",
+                                                  "shared/atmosphere_lut_mapping.glsl",
+                                                  "shared/atmosphere_tables.glsl",
+                                                  "shared/atmosphere_sky.glsl",
+                                                  "shared/atmosphere_analytic.glsl",
+                                                  "shared/atmosphere_color.glsl"};
 }  // namespace cupola

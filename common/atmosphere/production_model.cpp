@@ -1,0 +1,137 @@
+#include "atmosphere/production_model.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "atmosphere/atmosphere_geometry.hpp"
+#include "atmosphere/spectral_color.hpp"
+
+namespace cupola::atmosphere {
+using namespace cupola::shading;
+
+AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
+    auto at3 = [](auto fn) {
+        return vec3(static_cast<float>(fn(kProductionWavelengths[0])), static_cast<float>(fn(kProductionWavelengths[1])),
+                    static_cast<float>(fn(kProductionWavelengths[2])));
+    };
+    AtmosphereParams a{};
+    a.bottom_radius = static_cast<float>(p.bottom_radius);
+    a.top_radius = static_cast<float>(p.top_radius);
+    a.rayleigh_scattering = at3([&](double l) { return p.rayleigh_scattering(l); });
+    a.rayleigh_scale_height = static_cast<float>(p.rayleigh_scale_height);
+    a.mie_scattering = at3([&](double l) { return p.mie_scattering(l); });
+    a.mie_extinction = at3([&](double l) { return p.mie_extinction(l); });
+    a.mie_scale_height = static_cast<float>(p.mie_scale_height);
+    a.mie_g = static_cast<float>(p.mie_g);
+    a.ozone_absorption = at3([&](double l) { return p.ozone_absorption(l); });
+    a.ozone_bottom = static_cast<float>(p.ozone_bottom);
+    a.ozone_peak = static_cast<float>(p.ozone_peak);
+    a.ozone_top = static_cast<float>(p.ozone_top);
+    a.ground_albedo = at3([&](double l) { return p.ground_albedo(l); });
+    return a;
+}
+
+AtmosphereAnalyticFit fit_analytic_sun(const AtmosphereParams& a) {
+    const float r = a.bottom_radius + 0.5f * a.rayleigh_scale_height;
+    constexpr int kAngles = 111;
+    std::vector<glm::vec3> target(kAngles);
+    for (int i = 0; i < kAngles; ++i) {
+        const float mu_s = std::cos(glm::radians(static_cast<float>(i)));
+        target[i] = atm_ray_hits_ground(a, r, mu_s) ? vec3(0.0f) : atm_compute_transmittance(a, r, mu_s, 200);
+    }
+    AtmosphereAnalyticFit best{vec3(1.6f), 8.0f};
+    double best_err = 1e300;
+    for (float k2 = 2.0f; k2 <= 80.0f; k2 += 1.0f) {
+        AtmosphereAnalyticFit f{vec3(0.0f), k2};
+        double total = 0.0;
+        for (int c = 0; c < 3; ++c) {  // k1 per wavelength: fine grid over 1.0 .. 2.0 rad
+            double best_c = 1e300;
+            float best_k1 = 1.6f;
+            for (float k1 = 1.0f; k1 <= 2.0f; k1 += 0.0025f) {
+                double e = 0.0;
+                for (int i = 0; i < kAngles; ++i) {
+                    const float x = glm::radians(static_cast<float>(i)) / k1;
+                    const double v = 1.0 / std::sqrt(1.0 + std::pow(x, k2)) - target[i][c];
+                    e += v * v;
+                }
+                if (e < best_c) best_c = e, best_k1 = k1;
+            }
+            f.k1[c] = best_k1;
+            total += best_c;
+        }
+        if (total < best_err) best_err = total, best = f;
+    }
+    return best;
+}
+
+ProductionAtmosphere::ProductionAtmosphere(AtmosphereParameters params, ProductionQuality quality,
+                                           const TableCacheOptions& cache)
+    : params_(std::move(params)), quality_(std::move(quality)) {
+    gpu_ = to_shader_params(params_);
+    color_weights_ = production_color_weights(params_);
+    if (quality_.analytic) fit_ = fit_analytic_sun(gpu_);
+    tables_ = load_or_build_tables(params_, gpu_, quality_, cache);
+}
+
+vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance) const {
+    const AtmosphereParams& a = gpu_;
+    const sampler2D trans{&tables_.transmittance}, ms{&tables_.multiple_scattering}, irr{&tables_.irradiance};
+    const vec2 ts(tables_.transmittance.width, tables_.transmittance.height);
+    const vec2 mss(tables_.multiple_scattering.width, tables_.multiple_scattering.height);
+    const vec2 es(tables_.irradiance.width, tables_.irradiance.height);
+    const bool ground = st.valid && atm_ray_hits_ground(a, st.r, st.mu);
+    const bool geometry_first = t_geometry >= 0.0f && (!ground || t_geometry < atm_ground_distance(a, st));
+    AtmosphereSegment seg;
+    if (quality_.analytic) {
+        seg.inscatter = vec3(0.0f);
+        seg.transmittance = vec3(1.0f);
+        if (st.valid) {
+            float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
+            if (t_geometry >= 0.0f) t_end = std::min(t_end, std::max(t_geometry - st.offset, 0.0f));
+            seg = atm_analytic(a, fit_, st.r, st.mu, st.mu_s, st.nu, t_end);
+        }
+    } else {
+        seg = atm_view_ray(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry, quality_.view_samples);
+    }
+    vec3 out = seg.inscatter;
+    if (ground && !geometry_first) {
+        vec3 surface;
+        if (quality_.analytic) {
+            const float t = atm_distance_to_ground(a, st.r, st.mu);
+            const float mu_s_g = atm_mu_s_at(st.r, st.mu_s, st.nu, t, a.bottom_radius);
+            surface = a.ground_albedo * (1.0f / CUPOLA_PI) * atm_analytic_sun(fit_, mu_s_g) * std::max(mu_s_g, 0.0f);
+        } else {
+            surface = atm_ground_radiance(a, trans, ts, irr, es, st, a.ground_albedo);
+        }
+        out = out + seg.transmittance * surface;
+    }
+    if (transmittance) *transmittance = seg.transmittance;
+    return out;
+}
+
+glm::dvec3 ProductionAtmosphere::to_xyz(const vec3& f) const {
+    return glm::dvec3(atm_samples_to_xyz(f, sampler2D{&color_weights_}, static_cast<float>(color_weights_.width)));
+}
+
+ProductionRadiance ProductionAtmosphere::sky(const SkyQuery& q) const {
+    const double d = params_.bottom_radius + std::max(q.altitude_m, kMinCameraAltitude);
+    const double tv = glm::radians(q.view_zenith_deg), ts = glm::radians(q.sun_zenith_deg);
+    const double az = glm::radians(q.relative_azimuth_deg);
+    // Local frame at the camera: z up (away from the centre), the view in the x-z plane.
+    const vec3 v(static_cast<float>(std::sin(tv)), 0.0f, static_cast<float>(std::cos(tv)));
+    const vec3 sun(static_cast<float>(std::sin(ts) * std::cos(az)), static_cast<float>(std::sin(ts) * std::sin(az)),
+                   static_cast<float>(std::cos(ts)));
+    const AtmosphereRayStart st = atm_ray_start(gpu_, static_cast<float>(d), v, vec3(0.0f, 0.0f, -1.0f), sun);
+    ProductionRadiance out;
+    vec3 t;
+    const vec3 f = radiance(st, -1.0f, &t);
+    out.xyz = to_xyz(f);
+    out.rgb = xyz_to_srgb(out.xyz);
+    out.luminance = out.xyz.y;
+    out.transmittance = glm::dvec3(t);
+    out.in_atmosphere = st.valid;
+    out.hits_ground = st.valid && atm_ray_hits_ground(gpu_, st.r, st.mu);
+    return out;
+}
+
+}  // namespace cupola::atmosphere

@@ -1,0 +1,71 @@
+#pragma once
+// The production atmosphere model on the CPU: the same shared shading code the GPU pass runs
+// (shaders/shared/atmosphere_*.glsl, three sample wavelengths in float), with its tables and
+// colour matrix. Used by the cupola-atmosphere probe, the accuracy tests, the master's
+// cluster-wide exposure, and to fill the GPU pass's uniforms.
+//
+// Colour: the model computes radiance per unit solar irradiance at 680/550/440 nm; the spectrum
+// is rebuilt from those samples and integrated against the solar spectrum and the CIE functions
+// (atm_samples_to_xyz, production_color.hpp): photometric linear sRGB, luminance in cd m^-2 --
+// the same units as the reference integrator.
+#include <glm/glm.hpp>
+
+#include "atmosphere/atmosphere_parameters.hpp"
+#include "atmosphere/production_color.hpp"
+#include "atmosphere/production_quality.hpp"
+#include "atmosphere/production_tables.hpp"
+#include "atmosphere/reference_integrator.hpp"
+#include "shading/shared_shading.hpp"
+
+namespace cupola::atmosphere {
+
+// The sample wavelengths of the three channels (defined once, in atmosphere_color.glsl).
+inline const double kProductionWavelengths[3] = {shading::ATM_LAMBDA_R, shading::ATM_LAMBDA_G, shading::ATM_LAMBDA_B};
+
+// The uniform struct of the shared code, at the three sample wavelengths.
+shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p);
+
+
+// Fit of the seed-000 sunlight function to the model's own transmittance toward the Sun at half a
+// Rayleigh scale height (least squares over sun zenith 0..110 degrees).
+shading::AtmosphereAnalyticFit fit_analytic_sun(const shading::AtmosphereParams& a);
+
+struct ProductionRadiance {
+    glm::dvec3 rgb{0.0};  // linear sRGB, cd m^-2 scale
+    glm::dvec3 xyz{0.0};
+    double luminance = 0.0;                // cd m^-2
+    glm::dvec3 transmittance{1.0};         // along the view ray, at the sample wavelengths
+    bool hits_ground = false;
+    bool in_atmosphere = true;
+};
+
+class ProductionAtmosphere {
+public:
+    ProductionAtmosphere(AtmosphereParameters params, ProductionQuality quality, const TableCacheOptions& cache = {});
+
+    const AtmosphereParameters& parameters() const { return params_; }
+    const ProductionQuality& quality() const { return quality_; }
+    const shading::AtmosphereParams& shader_params() const { return gpu_; }
+    const shading::AtmosphereAnalyticFit& analytic_fit() const { return fit_; }
+    const ProductionTables& tables() const { return tables_; }
+    const shading::Texture2DData& color_weights() const { return color_weights_; }
+    // Per unit solar irradiance at the sample wavelengths -> CIE XYZ (Y in cd m^-2).
+    glm::dvec3 to_xyz(const glm::vec3& f) const;
+
+    // The same query as ReferenceIntegrator::sky (the ground's albedo from the parameters).
+    ProductionRadiance sky(const SkyQuery& query) const;
+
+    // Per unit solar irradiance at the sample wavelengths, for a ray in the shared code's terms;
+    // t_geometry < 0: no scene geometry. Adds the lit ground when the ray ends on it.
+    glm::vec3 radiance(const shading::AtmosphereRayStart& start, float t_geometry, glm::vec3* transmittance) const;
+
+private:
+    AtmosphereParameters params_;
+    ProductionQuality quality_;
+    shading::AtmosphereParams gpu_{};
+    shading::AtmosphereAnalyticFit fit_{};
+    ProductionTables tables_;
+    shading::Texture2DData color_weights_;
+};
+
+}  // namespace cupola::atmosphere

@@ -1,0 +1,29 @@
+#pragma once
+// Quality levels of the production atmosphere: table sizes, integration counts, per-pixel march
+// samples, and whether the analytic fast mode (seed 000) replaces the tables. Chosen by name in
+// scene files and on the command line (`--model`); docs/atmosphere-speed-vs-error.md measures each.
+#include <string>
+#include <vector>
+
+namespace cupola::atmosphere {
+
+struct ProductionQuality {
+    std::string name;
+    bool analytic = false;          // seed 000 fast mode: no tables beyond the fit, no march
+    bool multiple_scattering = true;
+    int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
+    int ms_size = 32, ms_directions = 64, ms_steps = 20;
+    int irradiance_width = 64, irradiance_height = 16, irradiance_directions = 64, irradiance_samples = 16;
+    int view_samples = 16;  // per-pixel march steps
+
+    // The table-defining fields (not view_samples): what the disk cache key covers.
+    std::string table_key() const;
+};
+
+// The named levels: "analytic", "single" (tables, no multiple scattering), "low", "medium",
+// "high", "ultra". Throws std::invalid_argument listing the valid names.
+ProductionQuality production_quality(const std::string& name);
+std::vector<std::string> production_quality_names();
+inline constexpr const char* kDefaultProductionQuality = "medium";
+
+}  // namespace cupola::atmosphere

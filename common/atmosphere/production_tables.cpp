@@ -1,0 +1,213 @@
+#include "atmosphere/production_tables.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <sodium.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <thread>
+#include <vector>
+
+#include "util/progress_bar.hpp"
+
+namespace cupola::atmosphere {
+namespace fs = std::filesystem;
+using shading::Texture2DData;
+
+namespace {
+constexpr const char* kTableFormatVersion = "cupola-atmosphere-tables-v1";
+
+Texture2DData make_table(int w, int h) {
+    Texture2DData t;
+    t.width = w;
+    t.height = h;
+    t.texels.assign(static_cast<size_t>(w) * h, glm::vec4(0.0f));
+    return t;
+}
+
+// Fills every texel of t with fn(u, v) (texel-centre coordinates), rows spread over threads.
+void fill_table(Texture2DData& t, int threads, ProgressBar& bar, const std::function<glm::vec3(glm::vec2)>& fn) {
+    std::atomic<int> next_row{0};
+    auto worker = [&] {
+        for (int y = next_row++; y < t.height; y = next_row++) {
+            for (int x = 0; x < t.width; ++x) {
+                const glm::vec2 uv((x + 0.5f) / t.width, (y + 0.5f) / t.height);
+                t.texels[static_cast<size_t>(y) * t.width + x] = glm::vec4(fn(uv), 1.0f);
+            }
+            bar.advance(t.width);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+}
+
+int resolve_threads(int threads) {
+    if (threads > 0) return threads;
+    const unsigned hw = std::thread::hardware_concurrency();
+    return hw == 0 ? 1 : static_cast<int>(hw);
+}
+
+bool write_table(const fs::path& path, const Texture2DData& t) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) return false;
+    OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "zip");
+    spec.attribute("cupola:format", kTableFormatVersion);
+    const fs::path tmp = path.string() + ".tmp.exr";
+    if (!out->open(tmp.string(), spec)) return false;
+    // EXR rows run top to bottom; table row 0 is v = 0: write rows reversed so the file shows v up.
+    const auto stride = static_cast<OIIO::stride_t>(t.width * sizeof(glm::vec4));
+    const auto* last_row = reinterpret_cast<const char*>(t.texels.data()) + stride * (t.height - 1);
+    const bool ok = out->write_image(OIIO::TypeDesc::FLOAT, last_row, OIIO::AutoStride, -stride) && out->close();
+    if (!ok) return false;
+    std::error_code ec;
+    fs::rename(tmp, path, ec);  // atomic: concurrent slaves never read a half-written table
+    return !ec;
+}
+
+// Reads a table written by write_table; returns false (and why) on any mismatch.
+bool read_table(const fs::path& path, int w, int h, Texture2DData& t, std::string& why) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        why = "cannot open";
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != w || spec.height != h || spec.nchannels != 4) {
+        why = "size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+              std::to_string(spec.nchannels) + ", expected " + std::to_string(w) + "x" + std::to_string(h) + "x4";
+        return false;
+    }
+    t = make_table(w, h);
+    const auto stride = static_cast<OIIO::stride_t>(w * sizeof(glm::vec4));
+    auto* last_row = reinterpret_cast<char*>(t.texels.data()) + stride * (h - 1);
+    if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, last_row, OIIO::AutoStride, -stride)) {
+        why = "unreadable pixels: " + in->geterror();
+        return false;
+    }
+    for (const auto& v : t.texels)
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || v.x < 0 || v.y < 0 || v.z < 0) {
+            why = "non-finite or negative texel";
+            return false;
+        }
+    return true;
+}
+}  // namespace
+
+std::size_t ProductionTables::bytes() const {
+    return (transmittance.texels.size() + multiple_scattering.texels.size() + irradiance.texels.size()) *
+           sizeof(glm::vec4);
+}
+
+std::string default_table_cache_directory() {
+    if (const char* d = std::getenv("CUPOLA_CACHE_DIR"); d && *d) return d;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "cupola" / "atmosphere").string();
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return (fs::path(home) / ".cache" / "cupola" / "atmosphere").string();
+    return ".cupola-cache/atmosphere";
+}
+
+std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q) {
+    const std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key();
+    unsigned char h[12];
+    crypto_generichash(h, sizeof h, reinterpret_cast<const unsigned char*>(text.data()), text.size(), nullptr, 0);
+    static const char* hex = "0123456789abcdef";
+    std::string out;
+    for (unsigned char c : h) {
+        out += hex[c >> 4];
+        out += hex[c & 15];
+    }
+    return out;
+}
+
+ProductionTables build_production_tables(const std::string& label, const shading::AtmosphereParams& a,
+                                         const ProductionQuality& q, int threads) {
+    using namespace cupola::shading;
+    const auto start = std::chrono::steady_clock::now();
+    threads = resolve_threads(threads);
+    ProductionTables t;
+    if (q.analytic) {  // the fast mode samples no table; keep 1x1 placeholders for the GPU bindings
+        t.transmittance = make_table(1, 1);
+        t.multiple_scattering = make_table(1, 1);
+        t.irradiance = make_table(1, 1);
+        return t;
+    }
+    t.transmittance = make_table(q.transmittance_width, q.transmittance_height);
+    t.multiple_scattering = make_table(q.ms_size, q.ms_size);
+    t.irradiance = make_table(q.irradiance_width, q.irradiance_height);
+    if (!q.multiple_scattering) t.multiple_scattering = make_table(1, 1);
+    const long texels = static_cast<long>(t.transmittance.texels.size() + t.multiple_scattering.texels.size() +
+                                          t.irradiance.texels.size());
+    ProgressBar bar("atmosphere tables " + label, texels);
+    const vec2 ts(t.transmittance.width, t.transmittance.height);
+    const vec2 ms_size(t.multiple_scattering.width, t.multiple_scattering.height);
+    const vec2 es(t.irradiance.width, t.irradiance.height);
+    fill_table(t.transmittance, threads, bar, [&](vec2 uv) {
+        const vec2 rm = atm_transmittance_r_mu(a, uv, ts);
+        return atm_compute_transmittance(a, rm.x, rm.y, q.transmittance_steps);
+    });
+    const sampler2D trans{&t.transmittance};
+    if (q.multiple_scattering) {
+        fill_table(t.multiple_scattering, threads, bar, [&](vec2 uv) {
+            const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
+            return atm_compute_ms(a, trans, ts, rs.x, rs.y, q.ms_directions, q.ms_steps);
+        });
+    } else {
+        bar.advance(1);
+    }
+    const sampler2D ms{&t.multiple_scattering};
+    fill_table(t.irradiance, threads, bar, [&](vec2 uv) {
+        const vec2 rs = atm_ms_r_mu_s(a, uv, es);
+        return atm_compute_irradiance(a, trans, ts, ms, ms_size, q.multiple_scattering, rs.x, rs.y,
+                                      q.irradiance_directions, q.irradiance_samples);
+    });
+    bar.finish();
+    t.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return t;
+}
+
+ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shading::AtmosphereParams& gpu,
+                                      const ProductionQuality& q, const TableCacheOptions& cache) {
+    const std::string key = table_cache_key(p, q);
+    const fs::path dir = cache.directory.empty() ? fs::path(default_table_cache_directory()) : fs::path(cache.directory);
+    const std::string stem = (p.name.empty() ? std::string("atmosphere") : p.name) + "-" + key;
+    const fs::path files[3] = {dir / (stem + "-transmittance.exr"), dir / (stem + "-multiple-scattering.exr"),
+                               dir / (stem + "-irradiance.exr")};
+    if (cache.enabled && !q.analytic && fs::exists(files[0]) && fs::exists(files[1]) && fs::exists(files[2])) {
+        ProductionTables t;
+        const int ms = q.multiple_scattering ? q.ms_size : 1;
+        std::string why;
+        if (read_table(files[0], q.transmittance_width, q.transmittance_height, t.transmittance, why) &&
+            read_table(files[1], ms, ms, t.multiple_scattering, why) &&
+            read_table(files[2], q.irradiance_width, q.irradiance_height, t.irradiance, why)) {
+            t.from_cache = true;
+            t.cache_key = key;
+            spdlog::info("atmosphere {}: tables loaded from cache {}", p.name, (dir / stem).string());
+            return t;
+        }
+        spdlog::warn("atmosphere {}: cached tables {} are unusable ({}); rebuilding", p.name, (dir / stem).string(), why);
+    }
+    ProductionTables t = build_production_tables(p.name, gpu, q, cache.threads);
+    t.cache_key = key;
+    spdlog::info("atmosphere {} ({}): tables built in {:.3f} s, {} KiB", p.name, q.name, t.build_seconds,
+                 t.bytes() / 1024);
+    if (cache.enabled && !q.analytic) {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        bool ok = !ec;
+        ok = ok && write_table(files[0], t.transmittance);
+        ok = ok && write_table(files[1], t.multiple_scattering);
+        ok = ok && write_table(files[2], t.irradiance);
+        if (!ok) spdlog::warn("atmosphere {}: could not write the table cache in {}", p.name, dir.string());
+    }
+    return t;
+}
+
+}  // namespace cupola::atmosphere

@@ -1,0 +1,37 @@
+// The fast analytic atmosphere of seed 000 (UniView, after Hoffman/Preetham and Stokholm Nielsen),
+// shared by GLSL and C++. One scale height for both species; optical depth from the mean density
+// of three points (start, middle, end) times the path length; in-scatter
+//   L_in = (b_R F_R + b_M F_M) / (b_R + b_M) * E_sun * (1 - exp(-(b_R + b_M) S)),
+// with E_sun = 1 / sqrt(1 + (alpha / k1)^k2) a non-physical fit of the sunlight reaching the air
+// (alpha = angle between the local vertical at the ray's midpoint and the Sun). k1 (per
+// wavelength) and k2 are fitted to the model's own transmittance on the CPU
+// (production_model.cpp) instead of being hand-tuned. Per unit solar irradiance, like atm_march.
+
+
+vec3 atm_analytic_sun(AtmosphereAnalyticFit fit, float mu_s) {
+    float alpha = acos(clamp(mu_s, -1.0, 1.0));
+    vec3 x = vec3(alpha) / fit.k1;
+    return vec3(1.0) / sqrt(vec3(1.0) + pow(x, vec3(fit.k2)));
+}
+
+AtmosphereSegment atm_analytic(AtmosphereParams a, AtmosphereAnalyticFit fit, float r, float mu, float mu_s, float nu,
+                               float t_end) {
+    AtmosphereSegment s;
+    s.inscatter = vec3(0.0);
+    s.transmittance = vec3(1.0);
+    if (t_end <= 0.0) return s;
+    float H = a.rayleigh_scale_height;
+    float r_mid = atm_radius_at(r, mu, 0.5 * t_end);
+    float r_end = atm_radius_at(r, mu, t_end);
+    float rho = (exp(-(r - a.bottom_radius) / H) + exp(-(r_mid - a.bottom_radius) / H) +
+                 exp(-(r_end - a.bottom_radius) / H)) / 3.0;
+    float depth = rho * t_end;
+    vec3 beta_r = a.rayleigh_scattering;
+    vec3 beta_m = a.mie_extinction;
+    vec3 f_ext = exp(-(beta_r + beta_m) * depth);
+    vec3 phase = (beta_r * atm_rayleigh_phase(nu) + a.mie_scattering * atm_cornette_shanks_phase(a.mie_g, nu)) /
+                 (beta_r + beta_m);
+    s.inscatter = phase * atm_analytic_sun(fit, atm_mu_s_at(r, mu_s, nu, 0.5 * t_end, r_mid)) * (vec3(1.0) - f_ext);
+    s.transmittance = f_ext;
+    return s;
+}

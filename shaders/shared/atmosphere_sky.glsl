@@ -1,0 +1,124 @@
+// The production sky model (shared by GLSL and C++): in-scattered radiance and transmittance
+// along one view ray, by ray marching with the precomputed tables (Hillaire 2020's per-pixel
+// path, usable from the ground to 1 AU). Per unit solar irradiance; the model's colour matrix
+// converts the result to photometric linear sRGB.
+
+
+// One march step: returns (in-scatter, optical depth) of the interval [t0, t1] through the
+// sample at its midpoint; energy-conserving in each step (exact for constant coefficients).
+AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                     vec2 ms_size, bool use_ms, float r, float mu, float mu_s, float nu,
+                                     float t0, float t1, vec3 throughput) {
+    AtmosphereSegment s;
+    float dt = t1 - t0;
+    float t = 0.5 * (t0 + t1);
+    float r_t = atm_radius_at(r, mu, t);
+    float h = r_t - a.bottom_radius;
+    float mu_s_t = atm_mu_s_at(r, mu_s, nu, t, r_t);
+    float dr = atm_rayleigh_density(a, h);
+    float dm = atm_mie_density(a, h);
+    vec3 sigma_t = a.rayleigh_scattering * dr + a.mie_extinction * dm + a.ozone_absorption * atm_ozone_density(a, h);
+    vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_t, mu_s_t);
+    vec3 source = t_sun * (a.rayleigh_scattering * (dr * atm_rayleigh_phase(nu)) +
+                           a.mie_scattering * (dm * atm_cornette_shanks_phase(a.mie_g, nu)));
+    if (use_ms) {
+        source = source + (a.rayleigh_scattering * dr + a.mie_scattering * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
+    }
+    s.inscatter = throughput * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
+    s.transmittance = exp(-sigma_t * dt);
+    return s;
+}
+
+// In-scatter and transmittance along the ray from (r, mu) over [0, t_end] in `samples` steps.
+// The steps are concentrated (quadratically) toward the ray's closest approach to the planet
+// centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a share
+// of the steps proportional to its length, at least one.
+AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
+                            bool use_ms, float r, float mu, float mu_s, float nu, float t_end, int samples) {
+    AtmosphereSegment total;
+    total.inscatter = vec3(0.0);
+    total.transmittance = vec3(1.0);
+    if (t_end <= 0.0) return total;
+    float t_c = clamp(-r * mu, 0.0, t_end);
+    int n_before = 0;
+    if (t_c > 0.0) n_before = int(clamp(floor(float(samples) * t_c / t_end + 0.5), 1.0, float(samples)));
+    if (t_c < t_end && n_before == samples) n_before = samples - 1;
+    int n_after = samples - n_before;
+    float t_prev = 0.0;
+    // Before t_c: t(u) = t_c (1 - (1 - u)^2), dense toward t_c.
+    for (int i = 1; i <= n_before; ++i) {
+        float u = float(i) / float(n_before);
+        float t_next = t_c * (1.0 - (1.0 - u) * (1.0 - u));
+        AtmosphereSegment s =
+            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance);
+        total.inscatter = total.inscatter + s.inscatter;
+        total.transmittance = total.transmittance * s.transmittance;
+        t_prev = t_next;
+    }
+    // After t_c: t(u) = t_c + (t_end - t_c) u^2, dense toward t_c.
+    for (int i = 1; i <= n_after; ++i) {
+        float u = float(i) / float(n_after);
+        float t_next = t_c + (t_end - t_c) * u * u;
+        AtmosphereSegment s =
+            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance);
+        total.inscatter = total.inscatter + s.inscatter;
+        total.transmittance = total.transmittance * s.transmittance;
+        t_prev = t_next;
+    }
+    return total;
+}
+
+// Illuminance factor of a horizontal surface at (r, mu_s) per unit solar irradiance: direct Sun
+// through the atmosphere plus sky light. Reflected radiance = albedo / pi * this.
+vec3 atm_surface_illuminance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D irr, vec2 irr_size,
+                             float r, float mu_s) {
+    vec3 direct = atm_sun_transmittance(a, trans, trans_size, r, mu_s) * max(mu_s, 0.0);
+    return direct + atm_lookup_irradiance(a, irr, irr_size, r, mu_s);
+}
+
+// Irradiance texel: the sky (single + multiple scattering, no ground bounce) integrated over
+// the upper hemisphere with the cosine weight, `directions` directions, `samples` steps each.
+vec3 atm_compute_irradiance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
+                            bool use_ms, float r, float mu_s, int directions, int samples) {
+    vec3 e = vec3(0.0);
+    float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
+    for (int i = 0; i < directions; ++i) {
+        vec3 w = atm_sphere_direction(i, 2 * directions);  // the first half has z > 0
+        float nu = w.x * sin_s + w.z * mu_s;
+        float len = atm_distance_to_top(a, r, w.z);
+        AtmosphereSegment s = atm_march(a, trans, trans_size, ms, ms_size, use_ms, r, w.z, mu_s, nu, len, samples);
+        e = e + s.inscatter * w.z;
+    }
+    return e * (2.0 * CUPOLA_PI / float(directions));
+}
+
+// A whole view ray from a camera (see atm_ray_start): in-scatter and transmittance up to the
+// ground, the top of the atmosphere, or scene geometry at t_geometry metres from the camera
+// (t_geometry < 0: none). analytic selects the seed-000 fast model (fit used only then).
+AtmosphereSegment atm_view_ray(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
+                               bool use_ms, AtmosphereRayStart st, float t_geometry, int samples) {
+    AtmosphereSegment none;
+    none.inscatter = vec3(0.0);
+    none.transmittance = vec3(1.0);
+    if (!st.valid) return none;
+    bool ground = atm_ray_hits_ground(a, st.r, st.mu);
+    float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
+    if (t_geometry >= 0.0) t_end = min(t_end, max(t_geometry - st.offset, 0.0));
+    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu, t_end, samples);
+}
+
+// Distance from the camera to the ground along the ray, or -1 when it does not meet the ground.
+float atm_ground_distance(AtmosphereParams a, AtmosphereRayStart st) {
+    if (!st.valid || !atm_ray_hits_ground(a, st.r, st.mu)) return -1.0;
+    return st.offset + atm_distance_to_ground(a, st.r, st.mu);
+}
+
+// Radiance leaving the ground (albedo from the parameters) where the ray meets it, per unit solar
+// irradiance, before the view ray's transmittance.
+vec3 atm_ground_radiance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D irr, vec2 irr_size,
+                         AtmosphereRayStart st, vec3 albedo) {
+    float t = atm_distance_to_ground(a, st.r, st.mu);
+    float mu_s_g = atm_mu_s_at(st.r, st.mu_s, st.nu, t, max(atm_radius_at(st.r, st.mu, t), a.bottom_radius));
+    return albedo * (1.0 / CUPOLA_PI) *
+           atm_surface_illuminance(a, trans, trans_size, irr, irr_size, a.bottom_radius, mu_s_g);
+}

@@ -1,0 +1,98 @@
+// The production model's precomputed tables: what one texel holds and how it is computed, plus
+// the lookups (shared by GLSL and C++; the CPU builds the tables with threads, see
+// common/atmosphere/production_tables.cpp). All tables are per unit solar irradiance.
+//
+//  transmittance  T(r, mu) to the top of the atmosphere, for rays that do not meet the ground.
+//  multiple_scattering  Psi_ms(r, mu_s) (Hillaire 2020): the in-scattered radiance of orders >= 2
+//                 per unit scattering coefficient, isotropic, = L_2 / (1 - f_ms).
+//  irradiance     E_sky(r, mu_s): sky irradiance on a horizontal surface (orders >= 1 from the
+//                 sky, not the direct Sun), for the ground's sky light.
+
+vec3 atm_lookup_transmittance(AtmosphereParams a, sampler2D table, vec2 size, float r, float mu) {
+    return vec3(textureLod(table, atm_transmittance_uv(a, r, mu, size), 0.0));
+}
+// Transmittance toward the Sun from (r, mu_s): 0 when the ground hides the (point) Sun.
+vec3 atm_sun_transmittance(AtmosphereParams a, sampler2D table, vec2 size, float r, float mu_s) {
+    if (atm_ray_hits_ground(a, r, mu_s)) return vec3(0.0);
+    return atm_lookup_transmittance(a, table, size, r, mu_s);
+}
+vec3 atm_lookup_ms(AtmosphereParams a, sampler2D table, vec2 size, float r, float mu_s) {
+    return vec3(textureLod(table, atm_ms_uv(a, r, mu_s, size), 0.0));
+}
+vec3 atm_lookup_irradiance(AtmosphereParams a, sampler2D table, vec2 size, float r, float mu_s) {
+    return vec3(textureLod(table, atm_ms_uv(a, r, mu_s, size), 0.0));
+}
+
+// Transmittance texel: optical depth to the top by the midpoint rule in `steps` steps.
+vec3 atm_compute_transmittance(AtmosphereParams a, float r, float mu, int steps) {
+    float len = atm_distance_to_top(a, r, mu);
+    float dt = len / float(steps);
+    vec3 tau = vec3(0.0);
+    for (int i = 0; i < steps; ++i) {
+        float t = (float(i) + 0.5) * dt;
+        float h = atm_radius_at(r, mu, t) - a.bottom_radius;
+        tau = tau + atm_extinction(a, h) * dt;
+    }
+    return exp(-tau);
+}
+
+// Hillaire's L' (second order, isotropic phase) and f_ms transfer along one direction.
+AtmosphereMsTerms atm_ms_terms_along(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r, float mu,
+                                     float mu_s, float nu, int steps) {
+    AtmosphereMsTerms out_terms;
+    out_terms.second_order = vec3(0.0);
+    out_terms.transfer = vec3(0.0);
+    bool ground = atm_ray_hits_ground(a, r, mu);
+    float len = ground ? atm_distance_to_ground(a, r, mu) : atm_distance_to_top(a, r, mu);
+    float dt = len / float(steps);
+    vec3 throughput = vec3(1.0);
+    float iso = 1.0 / (4.0 * CUPOLA_PI);
+    for (int i = 0; i < steps; ++i) {
+        float t = (float(i) + 0.5) * dt;
+        float r_t = atm_radius_at(r, mu, t);
+        float h = r_t - a.bottom_radius;
+        vec3 sigma_s = atm_scattering(a, h);
+        vec3 sigma_t = atm_extinction(a, h);
+        vec3 w = throughput * atm_one_minus_exp_over_x(sigma_t * dt) * dt;  // integral of T over the step
+        vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_t, atm_mu_s_at(r, mu_s, nu, t, r_t));
+        out_terms.second_order = out_terms.second_order + w * sigma_s * t_sun * iso;
+        out_terms.transfer = out_terms.transfer + w * sigma_s;
+        throughput = throughput * exp(-sigma_t * dt);
+    }
+    if (ground) {
+        float r_g = a.bottom_radius;
+        float mu_s_g = atm_mu_s_at(r, mu_s, nu, len, max(atm_radius_at(r, mu, len), r_g));
+        vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_g, mu_s_g);
+        out_terms.second_order =
+            out_terms.second_order + throughput * t_sun * max(mu_s_g, 0.0) * a.ground_albedo / CUPOLA_PI;
+    }
+    return out_terms;
+}
+
+// Unit vector number i of n spread evenly over the sphere (spherical Fibonacci); z is "up".
+vec3 atm_sphere_direction(int i, int n) {
+    float z = 1.0 - (2.0 * float(i) + 1.0) / float(n);
+    float phi = 2.39996322972865 * float(i);  // golden angle
+    float s = sqrt(max(1.0 - z * z, 0.0));
+    return vec3(s * cos(phi), s * sin(phi), z);
+}
+
+// Multiple-scattering texel: Psi_ms = L_2 / (1 - f_ms), averaged over `directions` directions.
+vec3 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r, float mu_s, int directions,
+                    int steps) {
+    vec3 l2 = vec3(0.0);
+    vec3 f = vec3(0.0);
+    float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
+    for (int i = 0; i < directions; ++i) {
+        vec3 w = atm_sphere_direction(i, directions);
+        float nu = w.x * sin_s + w.z * mu_s;  // Sun in the x-z plane
+        AtmosphereMsTerms m = atm_ms_terms_along(a, trans, trans_size, r, w.z, mu_s, nu, steps);
+        l2 = l2 + m.second_order;
+        f = f + m.transfer;
+    }
+    // Psi_2 = integral over the sphere of L' times the isotropic phase 1/(4 pi); each direction
+    // carries the solid angle 4 pi / n, so the two factors cancel to 1/n.
+    l2 = l2 * (1.0 / float(directions));
+    f = f * (1.0 / float(directions));
+    return l2 / max(vec3(1.0) - f, 1e-3);
+}

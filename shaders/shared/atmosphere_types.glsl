@@ -1,0 +1,56 @@
+// Plain data types of the shared atmosphere code (shared by GLSL and C++). Kept apart from the
+// functions because in C++ the functions have internal linkage (see glsl_compat.hpp) while these
+// types must be one type across translation units.
+
+// Atmosphere description and local optical properties for the production model (shared by GLSL
+// and C++). Three sample wavelengths per vec3 (x = 680 nm, y = 550 nm, z = 440 nm); lengths in
+// metres, coefficients in m^-1 at density 1. Filled from AtmosphereParameters on the CPU
+// (common/atmosphere/production_model.cpp), set as a uniform struct on the GPU.
+struct AtmosphereParams {
+    float bottom_radius;
+    float top_radius;
+    vec3 rayleigh_scattering;
+    float rayleigh_scale_height;
+    vec3 mie_scattering;
+    vec3 mie_extinction;
+    float mie_scale_height;
+    float mie_g;
+    vec3 ozone_absorption;  // at the tent peak
+    float ozone_bottom;
+    float ozone_peak;
+    float ozone_top;
+    vec3 ground_albedo;
+};
+
+// The atmospheric part of a camera ray. The camera sits at distance d from the planet centre,
+// looking along the unit v; c_hat is the unit direction from the camera to the centre and sun the
+// unit direction to the Sun (all in one frame; the CPU computes d and c_hat in double). Only
+// angles and ratios enter, never positions, so the result stays exact in float for a camera 1 AU
+// away (notes, hard cases 5 and 11): the entry point is located from the ray's closest approach
+// to the centre, not by subtracting large distances.
+struct AtmosphereRayStart {
+    float r;       // radius of the start (the camera, or the entry into the top sphere)
+    float mu;      // view zenith cosine there
+    float mu_s;    // sun zenith cosine there
+    float nu;      // cos(view, sun)
+    float offset;  // distance from the camera to the start
+    bool valid;    // false: the ray never enters the atmosphere
+};
+
+// Radiance (per unit solar irradiance) scattered once toward a point with an isotropic phase,
+// arriving from direction (mu, nu) [Hillaire's L'], and the transfer factor f_ms along it.
+// Returned as (L.xyz, f.x..) packed in two vec3s through a struct.
+struct AtmosphereMsTerms {
+    vec3 second_order;
+    vec3 transfer;
+};
+
+struct AtmosphereSegment {
+    vec3 inscatter;      // per unit solar irradiance
+    vec3 transmittance;  // along the marched part of the ray
+};
+
+struct AtmosphereAnalyticFit {
+    vec3 k1;  // radians
+    float k2;
+};
