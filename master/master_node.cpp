@@ -22,14 +22,16 @@ MasterNode::MasterNode(ClusterConfig cluster, MasterOptions options)
     : cluster_(std::move(cluster)),
       scene_(load_scene_config(cluster_.scene_file)),
       show_(ShowScript::load(cluster_.show_file, scene_)),
-      options_(std::move(options)) {}
+      options_(std::move(options)),
+      auto_exposure_(std::make_unique<AutoExposure>(cluster_, scene_)) {}
 
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
-                             uint64_t frame) {
+                             uint64_t frame, const AutoExposure* auto_exposure) {
     const double dt = cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
     Snapshot snap = show.evaluate(static_cast<double>(frame) * dt, scene);
     snap.frame = frame;
-    snap.settings.exposure = static_cast<float>(cluster.output.exposure);
+    snap.settings.exposure = static_cast<float>(
+        auto_exposure && cluster.output.auto_exposure.enabled ? auto_exposure->exposure(snap) : cluster.output.exposure);
     snap.settings.star_magnitude_limit = static_cast<float>(scene.stars.magnitude_limit);
     return snap;
 }
@@ -130,7 +132,7 @@ int MasterNode::run() {
     uint64_t frames_done = 0;
     uint64_t frames_incomplete = 0;
     for (uint64_t frame = 0; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
-        const Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame);
+        const Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame, auto_exposure_.get());
         const std::vector<uint8_t> payload = encode_snapshot(snap);
         const std::string hash = snapshot_hash(payload);
 

@@ -4,11 +4,13 @@
 #include <atomic>
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
+#include "auto_exposure.hpp"
 #include "show_script.hpp"
 
 namespace cupola {
@@ -19,9 +21,10 @@ struct MasterOptions {
 };
 
 // The snapshot the master broadcasts for a frame: deterministic in the frame index, so any
-// process (a test, a replay tool) can recompute it and check a frame file's hash.
+// process (a test, a replay tool) can recompute it and check a frame file's hash. With
+// output.auto_exposure enabled, pass the AutoExposure built for the same cluster and scene.
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
-                             uint64_t frame);
+                             uint64_t frame, const AutoExposure* auto_exposure = nullptr);
 
 class MasterNode {
 public:
@@ -36,6 +39,7 @@ private:
     SceneConfig scene_;
     ShowScript show_;
     MasterOptions options_;
+    std::unique_ptr<AutoExposure> auto_exposure_;
     std::atomic<bool> stop_requested_{false};
 };
 

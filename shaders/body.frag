@@ -1,16 +1,29 @@
 #version 450 core
 // A planet or moon: analytic ray-sphere hit, equirectangular texture in the body frame
-// (lon = atan(y, x), north = +Z), Lambert-lit by the sun.
+// (lon = atan(y, x), north = +Z), Lambert-lit by the sun. Also writes the deferred geometry
+// the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;       // unit, channel frame
 uniform float u_sin_alpha;       // R / d
+uniform vec4 u_distances;        // (d, R, d - R, d + R) in metres, from the CPU in double
 uniform mat3 u_channel_to_body;
 uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards the sun
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
+uniform vec3 u_reflectance;      // albedo * tint
 uniform sampler2D u_texture;     // linear RGB, row 0 = north
 
-out vec4 frag_color;
+layout(location = 0) out vec4 frag_color;
+layout(location = 1) out vec4 frag_geometry;  // (reflectance, distance)
+
+// Camera-to-hit distance t = d cos(theta) - R mu, written as (d^2 - R^2) / (d cos(theta) + R mu)
+// so that it stays accurate when the camera is metres above a planet (no cancellation).
+// Keep identical to sun.frag and atmosphere.frag.
+float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
+    if (dist.z <= 0.0) return 0.0;
+    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
+    return min(dist.z * (dist.w / den), 1e30);
+}
 
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
@@ -26,4 +39,5 @@ void main() {
     vec3 albedo_map = textureLod(u_texture, uv, 0.0).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     frag_color = vec4(u_lit * cos_i * albedo_map, 1.0);
+    frag_geometry = vec4(u_reflectance * albedo_map, sphere_hit_distance(v, u_center_dir, hit.w, u_distances));
 }

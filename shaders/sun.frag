@@ -1,13 +1,24 @@
 #version 450 core
 // Limb-darkened stellar disc: the view ray meets the sphere analytically; mu gives the darkening.
+// Also writes the deferred geometry (no diffuse reflectance, hit distance in metres) so that an
+// atmosphere behind the disc leaves it alone.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;  // unit, channel frame
 uniform float u_sin_alpha;  // R / d
+uniform vec4 u_distances;   // (d, R, d - R, d + R) in metres, from the CPU in double
 uniform vec3 u_radiance;    // disc-centre radiance times tint
 uniform float u_limb_u;
 
-out vec4 frag_color;
+layout(location = 0) out vec4 frag_color;
+layout(location = 1) out vec4 frag_geometry;
+
+// Keep identical to body.frag (which explains it) and atmosphere.frag.
+float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
+    if (dist.z <= 0.0) return 0.0;
+    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
+    return min(dist.z * (dist.w / den), 1e30);
+}
 
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
@@ -16,4 +27,5 @@ void main() {
         discard;
     }
     frag_color = vec4(u_radiance * limb_darkening(hit.w, u_limb_u), 1.0);
+    frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, hit.w, u_distances));
 }

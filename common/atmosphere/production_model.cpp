@@ -23,7 +23,26 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
     a.mie_extinction = at3([&](double l) { return p.mie_extinction(l); });
     a.mie_scale_height = static_cast<float>(p.mie_scale_height);
     a.mie_g = static_cast<float>(p.mie_g);
-    a.ozone_absorption = at3([&](double l) { return p.ozone_absorption(l); });
+    // Ozone: band averages rather than point values. The Chappuis band peaks near 600 nm, between
+    // the green and red samples, where the eye is most sensitive; point values at 550/680 nm miss
+    // it, which made long ozone paths (twilight, the ground seen from space) 5-15 % too bright.
+    // Each channel takes the mean over its reconstruction hat (the same piecewise interpolation
+    // atm_samples_to_xyz uses), weighted by the solar spectrum times the CIE y function.
+    {
+        const double lr = kProductionWavelengths[0], lg = kProductionWavelengths[1], lb = kProductionWavelengths[2];
+        glm::dvec3 num(0.0), den(0.0);
+        for (double l = 360.0; l <= 830.0; l += 1.0) {
+            glm::dvec3 hat(0.0);
+            if (l <= lb) hat.z = 1.0;
+            else if (l <= lg) hat.y = (l - lb) / (lg - lb), hat.z = 1.0 - hat.y;
+            else if (l <= lr) hat.x = (l - lg) / (lr - lg), hat.y = 1.0 - hat.x;
+            else hat.x = 1.0;
+            const double w = p.solar_irradiance(l) * cie1931_xyz_bar(l).y;
+            num += hat * w * p.ozone_absorption(l);
+            den += hat * w;
+        }
+        a.ozone_absorption = vec3(num / glm::max(den, glm::dvec3(1e-300)));
+    }
     a.ozone_bottom = static_cast<float>(p.ozone_bottom);
     a.ozone_peak = static_cast<float>(p.ozone_peak);
     a.ozone_top = static_cast<float>(p.ozone_top);

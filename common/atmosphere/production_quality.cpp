@@ -7,7 +7,7 @@ namespace cupola::atmosphere {
 std::string ProductionQuality::table_key() const {
     return std::string(analytic ? "analytic" : "lut") + ";T" + std::to_string(transmittance_width) + "x" +
            std::to_string(transmittance_height) + "s" + std::to_string(transmittance_steps) + ";M" +
-           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + ";E" +
+           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + "o" + std::to_string(ms_orders) + ";E" +
            std::to_string(irradiance_width) + "x" + std::to_string(irradiance_height) + "d" +
            std::to_string(irradiance_directions) + "s" + std::to_string(irradiance_samples) +
            (multiple_scattering ? ";ms" : ";single");
@@ -33,7 +33,7 @@ ProductionQuality level(const std::string& name, int tw, int th, int ts, int ms,
 }
 }  // namespace
 
-std::vector<std::string> production_quality_names() { return {"analytic", "single", "low", "medium", "high", "ultra"}; }
+std::vector<std::string> production_quality_names() { return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra"}; }
 
 ProductionQuality production_quality(const std::string& name) {
     if (name == "analytic") {
@@ -47,7 +47,16 @@ ProductionQuality production_quality(const std::string& name) {
         q.multiple_scattering = false;
         return q;
     }
-    if (name == "low") return level(name, 64, 16, 20, 16, 32, 10, 32, 8, 32, 8, 8);
+    if (name == "hillaire") {  // medium's tables with Hillaire's geometric multiple-scattering tail
+        ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+        q.ms_orders = 0;
+        return q;
+    }
+    if (name == "low") {
+        ProductionQuality q = level(name, 64, 16, 20, 16, 32, 10, 32, 8, 32, 8, 8);
+        q.ms_orders = 4;
+        return q;
+    }
     if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
     if (name == "high") return level(name, 512, 128, 80, 64, 128, 40, 128, 32, 128, 32, 32);
     if (name == "ultra") return level(name, 1024, 256, 160, 64, 256, 64, 128, 32, 256, 64, 64);

@@ -13,6 +13,7 @@ struct ProductionQuality {
     bool multiple_scattering = true;
     int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
     int ms_size = 32, ms_directions = 64, ms_steps = 20;
+    int ms_orders = 6;  // highest order iterated explicitly; 0: Hillaire's J_2 / (1 - f_ms) instead
     int irradiance_width = 64, irradiance_height = 16, irradiance_directions = 64, irradiance_samples = 16;
     int view_samples = 16;  // per-pixel march steps
 
@@ -20,8 +21,8 @@ struct ProductionQuality {
     std::string table_key() const;
 };
 
-// The named levels: "analytic", "single" (tables, no multiple scattering), "low", "medium",
-// "high", "ultra". Throws std::invalid_argument listing the valid names.
+// The named levels: "analytic", "single" (tables, no multiple scattering), "hillaire" (medium
+// with Hillaire's geometric multiple-scattering tail), "low", "medium", "high", "ultra". Throws std::invalid_argument listing the valid names.
 ProductionQuality production_quality(const std::string& name);
 std::vector<std::string> production_quality_names();
 inline constexpr const char* kDefaultProductionQuality = "medium";

@@ -4,6 +4,7 @@
 #include <sodium.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "shading/shader_sources.hpp"
 #include "util/progress_bar.hpp"
 
 namespace cupola::atmosphere {
@@ -115,7 +117,10 @@ std::string default_table_cache_directory() {
 }
 
 std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q) {
-    const std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key();
+    // The texts of the shared code that computes the tables are part of the key: a change to the
+    // model's code can never reuse tables the old code built.
+    std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key();
+    for (const char* f : kSharedShadingFiles) text += shader_source(f);
     unsigned char h[12];
     crypto_generichash(h, sizeof h, reinterpret_cast<const unsigned char*>(text.data()), text.size(), nullptr, 0);
     static const char* hex = "0123456789abcdef";
@@ -143,7 +148,8 @@ ProductionTables build_production_tables(const std::string& label, const shading
     t.multiple_scattering = make_table(q.ms_size, q.ms_size);
     t.irradiance = make_table(q.irradiance_width, q.irradiance_height);
     if (!q.multiple_scattering) t.multiple_scattering = make_table(1, 1);
-    const long texels = static_cast<long>(t.transmittance.texels.size() + t.multiple_scattering.texels.size() +
+    const long ms_passes = q.multiple_scattering ? std::max(1, q.ms_orders - 1) : 1;
+    const long texels = static_cast<long>(t.transmittance.texels.size() + ms_passes * t.multiple_scattering.texels.size() +
                                           t.irradiance.texels.size());
     ProgressBar bar("atmosphere tables " + label, texels);
     const vec2 ts(t.transmittance.width, t.transmittance.height);
@@ -157,8 +163,20 @@ ProductionTables build_production_tables(const std::string& label, const shading
     if (q.multiple_scattering) {
         fill_table(t.multiple_scattering, threads, bar, [&](vec2 uv) {
             const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
-            return atm_compute_ms(a, trans, ts, rs.x, rs.y, q.ms_directions, q.ms_steps);
+            return atm_compute_ms(a, trans, ts, rs.x, rs.y, q.ms_directions, q.ms_steps, q.ms_orders == 0);
         });
+        // Orders 3..ms_orders, each from the previous order's table, summed into the table.
+        Texture2DData order = t.multiple_scattering;
+        for (int n = 3; n <= q.ms_orders; ++n) {
+            Texture2DData next = make_table(q.ms_size, q.ms_size);
+            const sampler2D prev{&order};
+            fill_table(next, threads, bar, [&](vec2 uv) {
+                const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
+                return atm_compute_ms_next_order(a, prev, ms_size, rs.x, rs.y, q.ms_directions, q.ms_steps);
+            });
+            for (size_t i = 0; i < next.texels.size(); ++i) t.multiple_scattering.texels[i] += next.texels[i];
+            order = std::move(next);
+        }
     } else {
         bar.advance(1);
     }

@@ -34,7 +34,8 @@ struct TableCacheOptions {
 // else ./.cupola-cache/atmosphere.
 std::string default_table_cache_directory();
 
-// Hash (hex) of everything the tables depend on: parameters, table settings, format version.
+// Hash (hex) of everything the tables depend on: parameters, table settings, format version and
+// the text of the shared shading code.
 std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q);
 
 // Computes the tables (no cache), with a progress bar labelled by the atmosphere name.

@@ -152,7 +152,17 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
                 throw ConfigError(file_in, o->field("formats") + "[" + std::to_string(i) + "]",
                                   "\"" + cfg.output.formats[i] + "\" is not one of: png, exr");
         cfg.output.domemaster_size = static_cast<int>(o->integer_in("domemaster_size", 16, 16384, 1024));
-        cfg.output.exposure = o->number_in("exposure", 1e-6, 1e6, 1.0);
+        cfg.output.exposure = o->number_in("exposure", 1e-12, 1e6, 1.0);
+        if (auto a = o->optional_child("auto_exposure")) {
+            AutoExposureConfig& ae = cfg.output.auto_exposure;
+            ae.enabled = a->boolean("enabled", true);
+            ae.key = a->number_in("key", 1e-6, 1e3, ae.key);
+            ae.min_exposure = a->number_in("min_exposure", 1e-15, 1e9, ae.min_exposure);
+            ae.max_exposure = a->number_in("max_exposure", 1e-15, 1e9, ae.max_exposure);
+            if (ae.min_exposure > ae.max_exposure)
+                a->fail("min_exposure", "must not exceed max_exposure (" + std::to_string(ae.max_exposure) + ")");
+            a->reject_unknown_keys();
+        }
         default_w = static_cast<int>(o->integer_in("width", 8, 16384, default_w));
         default_h = static_cast<int>(o->integer_in("height", 8, 16384, default_h));
         o->reject_unknown_keys();

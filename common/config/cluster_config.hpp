@@ -33,10 +33,20 @@ struct DomeConfig {
     bool require_full_coverage = true;  // a hole between channel frusta is a config error
 };
 
+// Cluster-wide automatic exposure, decided by the master from the shared scene state (see
+// master/auto_exposure.hpp): exposure = key / (mean scene luminance over the dome), clamped.
+struct AutoExposureConfig {
+    bool enabled = false;
+    double key = 0.18;            // display value given to the mean luminance
+    double min_exposure = 1e-9;
+    double max_exposure = 1e3;    // reached on a black (night, no-atmosphere) sky
+};
+
 struct OutputConfig {
     std::vector<std::string> formats = {"png"};  // "png" (8-bit sRGB) and/or "exr" (half float, linear)
     int domemaster_size = 1024;
-    double exposure = 1.0;
+    double exposure = 1.0;        // fixed exposure (scene units -> display), unless auto_exposure
+    AutoExposureConfig auto_exposure;
 };
 
 struct ChannelConfig {

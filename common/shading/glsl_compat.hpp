@@ -61,6 +61,7 @@ inline float smoothstep(float e0, float e1, float x) {
 }
 inline float atan(float y, float x) { return std::atan2(y, x); }
 inline float abs(float x) { return std::fabs(x); }
+inline float sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f); }
 
 // vecN (float) combined with a double literal, as GLSL allows.
 template <glm::length_t L>

@@ -1,9 +1,12 @@
 // Ray-sphere geometry of the atmosphere in the (r, mu) parametrisation (shared by GLSL and C++):
 // r = distance of the ray origin from the planet centre, mu = cosine of the ray's zenith angle.
-// Discriminants are formed as R^2 - r^2 (1 - mu)(1 + mu) (no cancellation) and clamped.
+// Discriminants are formed as (R - r)(R + r) + (r mu)^2: in float, R^2 - r^2 would lose the
+// altitude of a camera near the ground (R^2 ~ 4e13 has an ulp of 4e6 m^2), and the ground/sky
+// decision at mu_horizon +- 1e-6 with it (notes, hard case 1).
 
 float atm_discriminant(float r, float mu, float radius) {
-    return radius * radius - r * r * ((1.0 - mu) * (1.0 + mu));
+    float rm = r * mu;
+    return (radius - r) * (radius + r) + rm * rm;
 }
 // Distance to the far intersection with the top sphere (the exit, for an origin inside).
 float atm_distance_to_top(AtmosphereParams a, float r, float mu) {

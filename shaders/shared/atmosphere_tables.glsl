@@ -3,8 +3,10 @@
 // common/atmosphere/production_tables.cpp). All tables are per unit solar irradiance.
 //
 //  transmittance  T(r, mu) to the top of the atmosphere, for rays that do not meet the ground.
-//  multiple_scattering  Psi_ms(r, mu_s) (Hillaire 2020): the in-scattered radiance of orders >= 2
-//                 per unit scattering coefficient, isotropic, = L_2 / (1 - f_ms).
+//  multiple_scattering  Psi_ms(r, mu_s) (after Hillaire 2020): the in-scattered radiance of orders
+//                 >= 2 per unit scattering coefficient, isotropic: the sum of J_2 .. J_N, each
+//                 order computed from the previous one's table (ms_orders), or J_2 / (1 - f_ms)
+//                 (Hillaire's geometric tail) when ms_orders is 0.
 //  irradiance     E_sky(r, mu_s): sky irradiance on a horizontal surface (orders >= 1 from the
 //                 sky, not the direct Sun), for the ground's sky light.
 
@@ -36,7 +38,8 @@ vec3 atm_compute_transmittance(AtmosphereParams a, float r, float mu, int steps)
     return exp(-tau);
 }
 
-// Hillaire's L' (second order, isotropic phase) and f_ms transfer along one direction.
+// Radiance (per unit solar irradiance) scattered once toward a point from direction (mu, nu)
+// [Hillaire's L'], and the transfer factor f_ms along that direction.
 AtmosphereMsTerms atm_ms_terms_along(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r, float mu,
                                      float mu_s, float nu, int steps) {
     AtmosphereMsTerms out_terms;
@@ -46,16 +49,23 @@ AtmosphereMsTerms atm_ms_terms_along(AtmosphereParams a, sampler2D trans, vec2 t
     float len = ground ? atm_distance_to_ground(a, r, mu) : atm_distance_to_top(a, r, mu);
     float dt = len / float(steps);
     vec3 throughput = vec3(1.0);
-    float iso = 1.0 / (4.0 * CUPOLA_PI);
     for (int i = 0; i < steps; ++i) {
         float t = (float(i) + 0.5) * dt;
         float r_t = atm_radius_at(r, mu, t);
         float h = r_t - a.bottom_radius;
-        vec3 sigma_s = atm_scattering(a, h);
+        float dr = atm_rayleigh_density(a, h);
+        float dm = atm_mie_density(a, h);
+        vec3 sigma_s = a.rayleigh_scattering * dr + a.mie_scattering * dm;
         vec3 sigma_t = atm_extinction(a, h);
         vec3 w = throughput * atm_one_minus_exp_over_x(sigma_t * dt) * dt;  // integral of T over the step
         vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_t, atm_mu_s_at(r, mu_s, nu, t, r_t));
-        out_terms.second_order = out_terms.second_order + w * sigma_s * t_sun * iso;
+        // First scattering with the true phase functions (sunlight turned from -sun into -w: the
+        // cosine of that angle is nu); only the second scattering, at the table point, is taken
+        // isotropic. (Hillaire 2020 takes both isotropic, which overestimates twilight, where
+        // sunlight reaches the shadowed air only through ~90-degree Rayleigh scattering.)
+        vec3 phase_weighted = a.rayleigh_scattering * (dr * atm_rayleigh_phase(nu)) +
+                              a.mie_scattering * (dm * atm_cornette_shanks_phase(a.mie_g, nu));
+        out_terms.second_order = out_terms.second_order + w * phase_weighted * t_sun;
         out_terms.transfer = out_terms.transfer + w * sigma_s;
         throughput = throughput * exp(-sigma_t * dt);
     }
@@ -77,9 +87,13 @@ vec3 atm_sphere_direction(int i, int n) {
     return vec3(s * cos(phi), s * sin(phi), z);
 }
 
-// Multiple-scattering texel: Psi_ms = L_2 / (1 - f_ms), averaged over `directions` directions.
+// Second-order texel: J_2 = integral over the sphere of L' times the isotropic phase 1/(4 pi);
+// each direction carries the solid angle 4 pi / n, so the two factors cancel to 1/n. With
+// geometric_tail, the orders >= 3 are added as Hillaire 2020 does: J_2 / (1 - f_ms), which
+// assumes every point sees the same J as the table point (fine by day, ~2x too bright in
+// twilight); without it, only J_2 (the builder adds orders >= 3 by atm_compute_ms_next_order).
 vec3 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r, float mu_s, int directions,
-                    int steps) {
+                    int steps, bool geometric_tail) {
     vec3 l2 = vec3(0.0);
     vec3 f = vec3(0.0);
     float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
@@ -90,9 +104,36 @@ vec3 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float 
         l2 = l2 + m.second_order;
         f = f + m.transfer;
     }
-    // Psi_2 = integral over the sphere of L' times the isotropic phase 1/(4 pi); each direction
-    // carries the solid angle 4 pi / n, so the two factors cancel to 1/n.
     l2 = l2 * (1.0 / float(directions));
     f = f * (1.0 / float(directions));
+    if (!geometric_tail) return l2;
     return l2 / max(vec3(1.0) - f, 1e-3);
+}
+
+// Next-order texel: J_{n+1}(x) = 1/n sum over directions of the integral of T sigma_s J_n along
+// the direction, J_n read from its table at each point (isotropic scattering, but J varying in
+// space -- what the geometric tail assumes away). The ground's reflection of diffuse light is
+// left out (albedo x sky irradiance: ~1 % of J by day).
+vec3 atm_compute_ms_next_order(AtmosphereParams a, sampler2D jn, vec2 jn_size, float r, float mu_s, int directions,
+                               int steps) {
+    vec3 sum = vec3(0.0);
+    float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
+    for (int i = 0; i < directions; ++i) {
+        vec3 w = atm_sphere_direction(i, directions);
+        float nu = w.x * sin_s + w.z * mu_s;
+        bool ground = atm_ray_hits_ground(a, r, w.z);
+        float len = ground ? atm_distance_to_ground(a, r, w.z) : atm_distance_to_top(a, r, w.z);
+        float dt = len / float(steps);
+        vec3 throughput = vec3(1.0);
+        for (int k = 0; k < steps; ++k) {
+            float t = (float(k) + 0.5) * dt;
+            float r_t = atm_radius_at(r, w.z, t);
+            float h = r_t - a.bottom_radius;
+            vec3 sigma_t = atm_extinction(a, h);
+            vec3 wt = throughput * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
+            sum = sum + wt * atm_scattering(a, h) * atm_lookup_ms(a, jn, jn_size, r_t, atm_mu_s_at(r, mu_s, nu, t, r_t));
+            throughput = throughput * exp(-sigma_t * dt);
+        }
+    }
+    return sum * (1.0 / float(directions));
 }

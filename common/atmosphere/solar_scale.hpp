@@ -1,0 +1,20 @@
+#pragma once
+// Scene units for the atmosphere. The production model's radiance is photometric (cd m^-2) for the
+// physical solar spectrum; a scene's Sun has its own disc radiance in scene units. The factor
+// below makes sky and Sun agree: sky in scene units = sky in cd m^-2 * solar_scale.
+#include "atmosphere/production_model.hpp"
+#include "config/scene_config.hpp"
+
+namespace cupola::atmosphere {
+
+// Irradiance (scene units) of a limb-darkened Sun disc of the given radiance seen from distance_m:
+// L * pi * (R / d)^2 * (1 - u / 3) (linear limb darkening integrated over the disc).
+double sun_irradiance_scene_units(const BodyConfig& sun, double distance_m);
+
+// Illuminance (lux) of the model's physical Sun: Y of f = 1 in every channel.
+double physical_solar_illuminance(const ProductionAtmosphere& model);
+
+// sun_irradiance_scene_units / physical_solar_illuminance.
+double solar_scale(const ProductionAtmosphere& model, const BodyConfig& sun, double distance_m);
+
+}  // namespace cupola::atmosphere

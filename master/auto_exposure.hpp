@@ -1,0 +1,36 @@
+#pragma once
+// Cluster-wide automatic exposure. The master decides one exposure per frame from the state every
+// channel shares (the snapshot and the scene), so all channels tone-map identically and no seam
+// can come from exposure: the mean luminance (scene units) seen over the dome hemisphere, from the
+// production atmosphere of every body that has one (sky, lit ground, limb), evaluated on the CPU by
+// the same shared code the slaves run. A pure function of the frame: no temporal adaptation, so
+// snapshots stay reproducible from the show alone.
+#include <memory>
+#include <vector>
+
+#include "atmosphere/production_model.hpp"
+#include "config/cluster_config.hpp"
+#include "config/scene_config.hpp"
+#include "wire/snapshot.hpp"
+
+namespace cupola {
+
+class AutoExposure {
+public:
+    AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene);
+    ~AutoExposure();
+
+    // Mean luminance (scene units) over `directions` directions spread over the dome hemisphere.
+    double mean_luminance(const Snapshot& snap) const;
+    // The exposure for the frame: fixed, or key / mean luminance clamped to the configured range.
+    double exposure(const Snapshot& snap) const;
+
+private:
+    struct Body;
+    const ClusterConfig* cluster_;
+    const SceneConfig* scene_;
+    std::vector<std::unique_ptr<Body>> bodies_;
+    int directions_ = 64;
+};
+
+}  // namespace cupola

@@ -1,0 +1,104 @@
+#version 450 core
+// Deferred atmosphere of one planet, per pixel of the channel (slave/atmosphere_pass.hpp):
+//   out = surface_or_background * T + in-scatter,
+// with T and the in-scatter of the production model along the view ray (ray march through the
+// tables, or the analytic fast mode) up to the ground, the top of the atmosphere, or the scene
+// geometry in front. Where the pixel shows this planet's surface, the surface is relit through
+// the atmosphere: reflectance / pi * (direct Sun through the air + sky irradiance). Only
+// directions and camera-relative ratios/distances enter (d, c_hat from the CPU in double).
+uniform vec4 u_tangents;
+uniform vec2 u_size;
+uniform vec3 u_center_dir;   // unit, channel frame: camera -> planet centre
+uniform float u_sin_alpha;   // R / d (at most 1), as the body pass had it
+uniform vec4 u_distances;    // (d, R, d - R, d + R) in metres, as the body pass had them
+uniform float u_d;           // camera -> planet centre, metres
+uniform vec3 u_sun;          // unit, channel frame: planet centre -> Sun
+uniform float u_solar_scale; // scene irradiance of the Sun / illuminance of the physical spectrum
+uniform AtmosphereParams u_atm;
+uniform AtmosphereAnalyticFit u_fit;
+uniform int u_analytic;
+uniform int u_use_ms;
+uniform int u_samples;
+uniform vec2 u_trans_size;
+uniform vec2 u_ms_size;
+uniform vec2 u_irr_size;
+uniform float u_weight_count;
+uniform sampler2D u_scene;     // colour so far
+uniform sampler2D u_geometry;  // (reflectance, distance); distance < 0: nothing drawn
+uniform sampler2D u_transmittance;
+uniform sampler2D u_multiple_scattering;
+uniform sampler2D u_irradiance;
+uniform sampler2D u_weights;
+
+layout(location = 0) out vec4 frag_color;
+
+// Keep identical to body.frag (which explains it) and sun.frag.
+float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
+    if (dist.z <= 0.0) return 0.0;
+    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
+    return min(dist.z * (dist.w / den), 1e30);
+}
+
+// Per unit solar irradiance at the sample wavelengths -> linear sRGB in scene units; negative
+// (out of gamut) components are clipped.
+vec3 to_scene_rgb(vec3 f) {
+    return max(xyz_to_linear_srgb(atm_samples_to_xyz(f, u_weights, u_weight_count)), vec3(0.0)) * u_solar_scale;
+}
+
+void main() {
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec4 scene = texelFetch(u_scene, px, 0);
+    vec4 geo = texelFetch(u_geometry, px, 0);
+    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+    AtmosphereRayStart st = atm_ray_start(u_atm, u_d, v, u_center_dir, u_sun);
+    if (!st.valid) {  // the ray misses the atmosphere
+        frag_color = scene;
+        return;
+    }
+    float g = geo.a;
+    bool ground = atm_ray_hits_ground(u_atm, st.r, st.mu);
+
+    // This planet's surface? The body pass's own hit, recomputed with the same code and
+    // uniforms, tells it exactly (comparing g with the atmosphere's ground distance would not:
+    // -r mu - sqrt(disc) cancels in float metres above the ground); unless the geometry shows
+    // something clearly in front of it.
+    vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+    bool surface = false;
+    float t_hit = -1.0;
+    if (hit.w >= 0.0) {
+        t_hit = sphere_hit_distance(v, u_center_dir, hit.w, u_distances);
+        surface = g < 0.0 || g >= t_hit * (1.0 - 1e-3);
+    }
+
+    vec3 base;
+    float t_geometry;
+    if (surface) {
+        vec3 reflectance = g >= 0.0 ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
+        float mu_s_g = clamp(dot(hit.xyz, u_sun), -1.0, 1.0);
+        vec3 illuminance;  // horizontal surface, per unit solar irradiance
+        if (u_analytic != 0) {
+            illuminance = atm_analytic_sun(u_fit, mu_s_g) * max(mu_s_g, 0.0);
+        } else {
+            illuminance = atm_surface_illuminance(u_atm, u_transmittance, u_trans_size, u_irradiance, u_irr_size,
+                                                  u_atm.bottom_radius, mu_s_g);
+        }
+        base = reflectance * to_scene_rgb(illuminance) * (1.0 / CUPOLA_PI);
+        // -1: the march ends exactly at the ground; a grazing ray the atmosphere thinks misses
+        // the ground ends at the surface.
+        t_geometry = ground ? -1.0 : max(g, t_hit);
+    } else {
+        base = scene.rgb;
+        t_geometry = g;
+    }
+
+    AtmosphereSegment seg;
+    if (u_analytic != 0) {
+        float t_end = ground ? atm_distance_to_ground(u_atm, st.r, st.mu) : atm_distance_to_top(u_atm, st.r, st.mu);
+        if (t_geometry >= 0.0) t_end = min(t_end, max(t_geometry - st.offset, 0.0));
+        seg = atm_analytic(u_atm, u_fit, st.r, st.mu, st.mu_s, st.nu, t_end);
+    } else {
+        seg = atm_view_ray(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size, u_use_ms != 0, st,
+                           t_geometry, u_samples);
+    }
+    frag_color = vec4(base * seg.transmittance + to_scene_rgb(seg.inscatter), scene.a);
+}
