@@ -8,6 +8,10 @@
 
 namespace cupola {
 
+namespace {
+constexpr int kGrid = 8;  // rays per channel side
+}  // namespace
+
 struct AutoExposure::Body {
     const BodyConfig* config;
     atmosphere::ProductionAtmosphere model;
@@ -34,8 +38,20 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
             break;
         }
     if (!sun || bodies_.empty()) return 0.0;
-    // The dome apex in the world: camera orientation * tilt * +Y.
-    const glm::dmat3 cam = glm::mat3_cast(snap.camera_orientation) * dome_tilt_rotation(cluster_->dome.tilt_deg);
+    // Directions: an 8 x 8 grid of pixel-centre rays through every channel's frustum -- exactly
+    // what the cluster renders, known to the master from the cluster config.
+    std::vector<glm::dvec3> dirs;
+    for (const auto& ch : cluster_->channels) {
+        const ChannelFrustum f = ch.frustum();
+        const glm::dmat3 to_world = glm::mat3_cast(snap.camera_orientation) *
+                                    dome_tilt_rotation(cluster_->dome.tilt_deg) * channel_rotation(ch.orientation);
+        for (int j = 0; j < kGrid; ++j)
+            for (int i = 0; i < kGrid; ++i) {
+                const double x = -f.tan_left() + (i + 0.5) / kGrid * (f.tan_left() + f.tan_right());
+                const double y = -f.tan_down() + (j + 0.5) / kGrid * (f.tan_down() + f.tan_up());
+                dirs.push_back(glm::normalize(to_world * glm::dvec3(x, y, -1.0)));
+            }
+    }
     double sum = 0.0;
     for (const auto& body : bodies_) {
         const BodyState* st = nullptr;
@@ -47,19 +63,14 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         const glm::dvec3 c_hat = to_centre / d;
         const glm::dvec3 sun_dir = glm::normalize(sun_state->position_m - snap.camera_position_m);
         const double scale = atmosphere::solar_scale(body->model, *sun, glm::length(sun_state->position_m - st->position_m));
-        for (int i = 0; i < directions_; ++i) {
-            // Fibonacci directions over the hemisphere around the apex (+Y of the dome frame).
-            const double y = 1.0 - (i + 0.5) / directions_;
-            const double phi = 2.399963229728653 * i;
-            const double s = std::sqrt(std::max(0.0, 1.0 - y * y));
-            const glm::dvec3 v = cam * glm::dvec3(s * std::cos(phi), y, s * std::sin(phi));
+        for (const glm::dvec3& v : dirs) {
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
             const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr);
             sum += body->model.to_xyz(f).y * scale;
         }
     }
-    return sum / directions_;
+    return dirs.empty() ? 0.0 : sum / static_cast<double>(dirs.size());
 }
 
 double AutoExposure::exposure(const Snapshot& snap) const {

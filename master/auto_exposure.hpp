@@ -20,7 +20,7 @@ public:
     AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene);
     ~AutoExposure();
 
-    // Mean luminance (scene units) over `directions` directions spread over the dome hemisphere.
+    // Mean luminance (scene units) over the channels' ray grid.
     double mean_luminance(const Snapshot& snap) const;
     // The exposure for the frame: fixed, or key / mean luminance clamped to the configured range.
     double exposure(const Snapshot& snap) const;
@@ -30,7 +30,6 @@ private:
     const ClusterConfig* cluster_;
     const SceneConfig* scene_;
     std::vector<std::unique_ptr<Body>> bodies_;
-    int directions_ = 64;
 };
 
 }  // namespace cupola

@@ -32,13 +32,6 @@ uniform sampler2D u_weights;
 
 layout(location = 0) out vec4 frag_color;
 
-// Keep identical to body.frag (which explains it) and sun.frag.
-float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
-    if (dist.z <= 0.0) return 0.0;
-    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
-    return min(dist.z * (dist.w / den), 1e30);
-}
-
 // Per unit solar irradiance at the sample wavelengths -> linear sRGB in scene units; negative
 // (out of gamut) components are clipped.
 vec3 to_scene_rgb(vec3 f) {

@@ -16,15 +16,6 @@ uniform sampler2D u_texture;     // linear RGB, row 0 = north
 layout(location = 0) out vec4 frag_color;
 layout(location = 1) out vec4 frag_geometry;  // (reflectance, distance)
 
-// Camera-to-hit distance t = d cos(theta) - R mu, written as (d^2 - R^2) / (d cos(theta) + R mu)
-// so that it stays accurate when the camera is metres above a planet (no cancellation).
-// Keep identical to sun.frag and atmosphere.frag.
-float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
-    if (dist.z <= 0.0) return 0.0;
-    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
-    return min(dist.z * (dist.w / den), 1e30);
-}
-
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
     vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);

@@ -13,13 +13,6 @@ uniform float u_limb_u;
 layout(location = 0) out vec4 frag_color;
 layout(location = 1) out vec4 frag_geometry;
 
-// Keep identical to body.frag (which explains it) and atmosphere.frag.
-float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
-    if (dist.z <= 0.0) return 0.0;
-    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
-    return min(dist.z * (dist.w / den), 1e30);
-}
-
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
     vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);

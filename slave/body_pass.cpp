@@ -35,6 +35,7 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program_.set("u_channel_to_body", glm::mat3(channel_to_body));
     program_.set("u_sun_dir", glm::vec3(sun_dir));
     program_.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
+    program_.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
     program_.set("u_texture", 0);
     tex->second->bind(0);
     vao_.bind();

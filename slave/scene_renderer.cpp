@@ -3,8 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 
+#include "atmosphere_pass.hpp"
 #include "body_pass.hpp"
 #include "gl_framebuffer.hpp"
 #include "projection/dome_frame.hpp"
@@ -15,28 +17,63 @@
 
 namespace cupola {
 
+namespace {
+std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> load_atmospheres(const SceneConfig& scene) {
+    std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> out;
+    for (const auto& b : scene.bodies)
+        if (b.kind != BodyKind::Star && b.atmosphere.present) out[b.id] = std::make_unique<GpuAtmosphere>(b);
+    return out;
+}
+}  // namespace
+
+// Render targets: the scene is drawn into `color_a` (attachment 0) and `geometry` (attachment 1:
+// reflectance + hit distance, for the atmosphere); each atmosphere pass then reads the latest
+// colour and the geometry and writes the other colour texture (ping-pong). `target_a` and
+// `target_b` hold one colour texture each, so no pass samples a texture attached to the
+// framebuffer it draws into.
 struct SceneRenderer::Impl {
     Impl(const ClusterConfig& cluster, const ChannelConfig& ch, const SceneConfig& sc)
         : scene(sc),
           frustum(ch.frustum()),
           tilt(dome_tilt_rotation(cluster.dome.tilt_deg) * channel_rotation(ch.orientation)),
-          framebuffer(ch.width, ch.height),
+          color_a(ch.width, ch.height, nullptr, GL_NEAREST),
+          color_b(ch.width, ch.height, nullptr, GL_NEAREST),
+          geometry(ch.width, ch.height, nullptr, GL_NEAREST),
+          scene_target({&color_a, &geometry}),
+          target_a({&color_a}),
+          target_b({&color_b}),
           stars(sc.stars, load_star_catalog(sc.stars.catalog, sc.stars.magnitude_limit)),
-          bodies(sc) {}
+          bodies(sc),
+          atmospheres(load_atmospheres(sc)) {
+        stats.tables_built_or_loaded = static_cast<int>(atmospheres.size());
+        if (!atmospheres.empty()) atmosphere = std::make_unique<AtmospherePass>();
+    }
 
     SceneConfig scene;
     ChannelFrustum frustum;
     glm::dmat3 tilt;  // channel -> camera frame
-    GlFramebuffer framebuffer;
+    GlTexture color_a, color_b, geometry;
+    GlFramebuffer scene_target, target_a, target_b;
     StarPass stars;
     SunPass sun;
     BodyPass bodies;
+    std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by body id
+    std::unique_ptr<AtmospherePass> atmosphere;                       // only when some body has one
+    AtmosphereStats stats;
 };
 
 SceneRenderer::SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene)
     : impl_(std::make_unique<Impl>(cluster, channel, scene)) {}
 
-SceneRenderer::~SceneRenderer() = default;
+SceneRenderer::~SceneRenderer() {
+    if (!impl_->atmospheres.empty()) {
+        const AtmosphereStats s = impl_->stats;
+        spdlog::info("atmospheres: {} table sets built or loaded, {} passes run, {} skipped (outside the frustum)",
+                     s.tables_built_or_loaded, s.passes_run, s.passes_skipped);
+    }
+}
+
+AtmosphereStats SceneRenderer::atmosphere_stats() const { return impl_->stats; }
 
 Image SceneRenderer::render(const Snapshot& snap) {
     Impl& m = *impl_;
@@ -46,15 +83,16 @@ Image SceneRenderer::render(const Snapshot& snap) {
     view.world_to_channel = glm::transpose(view.channel_to_world);
     view.camera_position_m = snap.camera_position_m;
 
-    m.framebuffer.bind();
+    m.scene_target.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    m.scene_target.clear(0, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    m.scene_target.clear(1, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));  // distance < 0: no geometry
 
-    // Pass 1: stars (background, additive).
+    // Pass 1: stars (background, additive; colour only, the geometry stays "none").
+    m.scene_target.draw_buffers(1);
     m.stars.draw(view, std::min<double>(m.scene.stars.magnitude_limit, snap.settings.star_magnitude_limit));
+    m.scene_target.draw_buffers(2);
 
     // The light: the first BodyKind::Star in the snapshot.
     SunLight light;
@@ -83,8 +121,31 @@ Image SceneRenderer::render(const Snapshot& snap) {
         else
             m.bodies.draw(view, *it.body, *it.state, it.sphere, light);
     }
+
+    // Pass 4: atmospheres, far to near, each over everything drawn so far.
+    const GlFramebuffer* current = &m.target_a;  // holds color_a, where the scene was drawn
+    long run = 0, skipped = 0;
+    for (const auto& it : items) {
+        const auto atm = m.atmospheres.find(it.body->id);
+        if (atm == m.atmospheres.end()) continue;
+        const glm::dvec3 center = it.sphere.center_dir * it.sphere.distance_m;  // channel frame, double
+        if (sphere_outside_frustum(m.frustum, center, atm->second->top_radius_m())) {
+            ++skipped;
+            continue;
+        }
+        const GlFramebuffer* next = current == &m.target_a ? &m.target_b : &m.target_a;
+        next->bind();
+        m.atmosphere->draw(view, *atm->second, *it.state, it.sphere, light, current->color(0), m.geometry);
+        current = next;
+        ++run;
+    }
+    m.stats.passes_run += run;
+    m.stats.passes_skipped += skipped;
+    if (!m.atmospheres.empty())
+        spdlog::debug("frame {}: atmosphere passes {} run, {} skipped (totals {} / {})", snap.frame, run, skipped,
+                      m.stats.passes_run, m.stats.passes_skipped);
     glFinish();
-    return m.framebuffer.read();
+    return current->read();
 }
 
 }  // namespace cupola

@@ -1,6 +1,6 @@
 #pragma once
-// Renders one channel's frustum slice of the dome for a snapshot, into an offscreen RGBA16F
-// framebuffer, and reads it back as a linear float image. Needs a current GL 4.5 context.
+// Renders one channel's frustum slice of the dome for a snapshot, into offscreen RGBA32F
+// targets, and reads it back as a linear float image. Needs a current GL 4.5 context.
 #include <memory>
 
 #include "config/cluster_config.hpp"
@@ -10,11 +10,20 @@
 
 namespace cupola {
 
+// What the atmosphere passes did: only bodies with an atmosphere get tables, and a pass runs
+// only while the body's top-of-atmosphere sphere can touch the channel's frustum.
+struct AtmosphereStats {
+    int tables_built_or_loaded = 0;  // at construction, one per body with an atmosphere
+    long passes_run = 0;             // summed over frames
+    long passes_skipped = 0;         // atmosphere entirely outside the frustum
+};
+
 class SceneRenderer {
 public:
     SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene);
     ~SceneRenderer();
     Image render(const Snapshot& snapshot);
+    AtmosphereStats atmosphere_stats() const;
 
 private:
     struct Impl;

@@ -8,6 +8,7 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
     SphereView s;
     const glm::dvec3 rel = view.world_to_channel * (center_world_m - view.camera_position_m);  // double
     s.distance_m = glm::length(rel);
+    s.radius_m = radius_m;
     if (s.distance_m <= 0.0) {
         s.center_dir = glm::dvec3(0, 0, -1);
         s.sin_alpha = 2.0;
@@ -36,11 +37,17 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
     return s;
 }
 
+glm::vec4 sphere_distances(const SphereView& sphere) {
+    const double d = sphere.distance_m, r = sphere.radius_m;
+    return glm::vec4(static_cast<float>(d), static_cast<float>(r), static_cast<float>(d - r), static_cast<float>(d + r));
+}
+
 void draw_sphere(const GlProgram& program, const ChannelView& view, const SphereView& sphere) {
     program.set("u_tangents", view.tangents());
     program.set("u_size", view.size());
     program.set("u_center_dir", glm::vec3(sphere.center_dir));
     program.set("u_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
+    program.set("u_distances", sphere_distances(sphere));
     program.set("u_corners", sphere.corners.data(), 4);
     program.set("u_projection", glm::mat4(view.frustum->projection(SphereView::kNear, SphereView::kFar)));
     program.set("u_fullscreen", sphere.fullscreen ? 1 : 0);

@@ -12,6 +12,7 @@ namespace cupola {
 
 struct SphereView {
     double distance_m = 0.0;     // camera to centre
+    double radius_m = 0.0;
     glm::dvec3 center_dir{0.0};  // unit, channel frame
     double sin_alpha = 0.0;      // R / d (>= 1: camera inside or on the sphere)
     // Viewpoint-oriented billboard in "scaled space": the sphere scaled by kScaledDistance / d,
@@ -26,8 +27,12 @@ struct SphereView {
 
 SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_world_m, double radius_m);
 
-// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_corners, u_projection, u_fullscreen
-// and draws the billboard (a 4-vertex strip from gl_VertexID).
+// (d, R, d - R, d + R) in metres, differences taken in double: what a shader needs to get the
+// camera-to-hit distance without cancellation (sphere_hit_distance in body.frag).
+glm::vec4 sphere_distances(const SphereView& sphere);
+
+// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_distances, u_corners, u_projection,
+// u_fullscreen and draws the billboard (a 4-vertex strip from gl_VertexID).
 void draw_sphere(const GlProgram& program, const ChannelView& view, const SphereView& sphere);
 
 }  // namespace cupola

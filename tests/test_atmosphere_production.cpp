@@ -307,7 +307,9 @@ TEST(ProductionVsReference, DefaultModelMeetsTheErrorTargetsOverall) {
     }
     // Every daylight set is measured (the reference is precise there).
     for (const auto& g : r.groups)
-        if (g.sun_zenith_deg < 80.0) EXPECT_EQ(g.reference_limited, 0) << g.camera << " " << g.sun_zenith_deg;
+        if (g.sun_zenith_deg < 80.0) {
+            EXPECT_EQ(g.reference_limited, 0) << g.camera << " " << g.sun_zenith_deg;
+        }
     EXPECT_LE(r.overall.median, 0.02);
     EXPECT_LE(r.overall.p99, 0.10);
     EXPECT_LE(r.overall.chroma_median, 0.01);  // about two just-noticeable differences

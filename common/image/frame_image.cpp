@@ -22,7 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr float kHalfMax = 65504.0f;
 
 // Attribute names (see the header comment).
 constexpr const char* kAttrChannel = "cupola:channel";
@@ -39,9 +38,10 @@ std::string fmt_double(double v) {
     return buf;
 }
 
-float clamp_half(float v) {
+// NaN -> 0 and +-inf -> +-FLT_MAX: a frame file never holds a non-finite value.
+float finite_or_clamped(float v) {
     if (std::isnan(v)) return 0.0f;
-    return std::clamp(v, -kHalfMax, kHalfMax);  // also maps +-inf to +-65504
+    return std::clamp(v, -std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
 }
 
 float clamp01(float v) {
@@ -107,13 +107,15 @@ void write_one(const fs::path& final_path, const std::string& format, const Imag
     const void* data = nullptr;
     OIIO::TypeDesc data_type;
     if (format == "exr") {
-        spec = OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::HALF);
+        // 32-bit float: physical scene units span ~1e-6 (night sky) to ~2e9 (the Sun's disc), which
+        // half floats (max 65504) cannot hold even after exposure.
+        spec = OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
         spec.attribute("compression", "zip");
         spec.attribute("oiio:ColorSpace", "Linear");
         fdata.resize(n);
         for (size_t i = 0; i < n; i += 4) {
-            for (int c = 0; c < 3; ++c) fdata[i + c] = clamp_half(image.rgba[i + c] * ex);
-            fdata[i + 3] = clamp_half(image.rgba[i + 3]);
+            for (int c = 0; c < 3; ++c) fdata[i + c] = finite_or_clamped(image.rgba[i + c] * ex);
+            fdata[i + 3] = finite_or_clamped(image.rgba[i + 3]);
         }
         data = fdata.data();
         data_type = OIIO::TypeDesc::FLOAT;
@@ -281,6 +283,7 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
         get_double_attr(spec, kAttrSimTime, m.sim_time_s);
         get_string_attr(spec, kAttrHash, m.snapshot_hash);
         get_string_attr(spec, kAttrRenderer, m.renderer);
+        m.exposure = exposure;
         *meta = std::move(m);
     }
     return img;

@@ -1,6 +1,6 @@
 #pragma once
 // Channel frames and domemasters on disk, written and read with OpenImageIO.
-//  - EXR: half-float RGBA, linear scene radiance times exposure (no tone mapping).
+//  - EXR: 32-bit float RGBA, linear scene radiance times exposure (no tone mapping).
 //  - PNG: 8-bit sRGB RGBA after the display transform (exposure, clamp, sRGB encode).
 // Every file carries metadata attributes so that sync can be checked from the files alone:
 //   cupola:channel (int), cupola:channel_name, cupola:frame (int, as string if > 2^31),
@@ -29,6 +29,7 @@ struct FrameMetadata {
     double sim_time_s = 0.0;
     std::string snapshot_hash;
     std::string renderer;
+    double exposure = 1.0;  // read back from the file (written from the write_frame argument)
 };
 
 // File name of a frame: "frame_000042.png" (six digits, more if needed).

@@ -34,3 +34,13 @@ vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
     }
     return vec4(normalize(n), mu);
 }
+
+// Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist =
+// (d, R, d - R, d + R) computed in double on the CPU (d = camera-centre distance, R = radius):
+// t = (d - R)(d + R) / (d cos(theta) + R mu), the near root of the ray-sphere equation written
+// without cancellation, so a surface a few metres away keeps its precision. 0 for a camera inside.
+float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
+    if (dist.z <= 0.0) return 0.0;
+    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
+    return min(dist.z * (dist.w / den), 1e30);
+}

@@ -1,5 +1,6 @@
 #include "support/test_support.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,15 @@
 namespace cupola::test {
 
 namespace fs = std::filesystem;
+
+namespace {
+// Every test executable (and every process it starts) keeps the atmosphere's table cache in the
+// build tree, never in the user's ~/.cache; a test may still point it elsewhere.
+const bool kCacheInBuildTree = [] {
+    setenv("CUPOLA_CACHE_DIR", (fs::path(CUPOLA_TEST_TMP) / "atmosphere-cache").c_str(), 1);
+    return true;
+}();
+}  // namespace
 
 std::string scratch_dir(const std::string& name) {
     fs::path p = fs::path(CUPOLA_TEST_TMP) / name;

@@ -1,5 +1,6 @@
 #pragma once
-// Small helpers shared by the tests: scratch folders, repository paths, writing files.
+// Small helpers shared by the tests: scratch folders, repository paths, writing files. Linking
+// them also sets CUPOLA_CACHE_DIR to <build>/test-tmp/atmosphere-cache for the whole process.
 #include <string>
 
 namespace cupola::test {
