@@ -44,7 +44,8 @@ void expect_error(const std::string& name, const json& cfg, const std::string& f
 }  // namespace
 
 TEST(Config, ShippedConfigsLoad) {
-    for (const char* f : {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json"}) {
+    for (const char* f : {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json",
+                          "configs/descent-1ch.json"}) {
         ClusterConfig c = load_cluster_config(test::source_path(f));
         EXPECT_FALSE(c.channels.empty()) << f;
         SceneConfig s = load_scene_config(c.scene_file);
@@ -164,4 +165,51 @@ TEST(Config, SceneErrorsAreNamed) {
     } catch (const ConfigError& e) {
         EXPECT_EQ(e.field(), "bodies[0].kind");
     }
+}
+
+TEST(Config, AtmosphereAndExposureErrorsAreNamed) {
+    const std::string dir = test::scratch_dir("config/atmosphere");
+    json s = json::parse(test::read_text(test::source_path("configs/scenes/earth-physical.json")));
+    s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["bodies"][1]["texture"] = "generated:earth";
+    auto scene_error = [&](const json& scene, const std::string& field, const std::string& words) {
+        test::write_text(dir + "/scene.json", scene.dump());
+        try {
+            load_scene_config(dir + "/scene.json");
+            FAIL() << field;
+        } catch (const ConfigError& e) {
+            EXPECT_EQ(e.field(), field) << e.what();
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+    };
+    json bad = s;
+    bad["bodies"][1]["atmosphere"]["model"] = "fastest";
+    scene_error(bad, "bodies[1].atmosphere.model", "medium");  // the valid names are listed
+    bad = s;
+    bad["bodies"][1]["atmosphere"]["preset"] = "venus";
+    scene_error(bad, "bodies[1].atmosphere.preset", "earth");
+    bad = s;
+    bad["bodies"][1]["atmosphere"]["mie_g"] = 1.5;
+    scene_error(bad, "bodies[1].atmosphere.mie_g", "");
+    bad = s;
+    bad["bodies"][1]["atmosphere"]["colour"] = "blue";
+    scene_error(bad, "bodies[1].atmosphere.colour", "");
+    bad = s;
+    bad["bodies"][0]["atmosphere"] = {{"preset", "earth"}};
+    scene_error(bad, "bodies[0].atmosphere.preset", "star");
+    bad = s;
+    bad["bodies"][1]["atmosphere"]["top_altitude_m"] = 5000;  // thinner than the 8 km scale height
+    scene_error(bad, "bodies[1].atmosphere.top_altitude_m", "scale height");
+    // A good one resolves the preset onto the body's radius.
+    test::write_text(dir + "/scene.json", s.dump());
+    const SceneConfig ok = load_scene_config(dir + "/scene.json");
+    EXPECT_TRUE(ok.bodies[1].atmosphere.present);
+    EXPECT_DOUBLE_EQ(ok.bodies[1].atmosphere.parameters.bottom_radius, ok.bodies[1].radius_m);
+    EXPECT_DOUBLE_EQ(ok.bodies[1].atmosphere.parameters.top_radius, ok.bodies[1].radius_m + 60000.0);
+    EXPECT_FALSE(ok.bodies[2].atmosphere.present);
+
+    json c = json::parse(test::read_text(test::source_path("configs/descent-1ch.json")));
+    c["output"]["auto_exposure"]["min_exposure"] = 10.0;
+    c["output"]["auto_exposure"]["max_exposure"] = 1.0;
+    expect_error("auto_exposure_range", c, "output.auto_exposure.min_exposure", "max_exposure");
 }

@@ -1,0 +1,71 @@
+// Cluster-wide automatic exposure (master/auto_exposure): one value per frame, decided by the
+// master from data every channel shares, following the sky from noon to night.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "auto_exposure.hpp"
+#include "config/cluster_config.hpp"
+#include "config/scene_config.hpp"
+#include "master_node.hpp"
+#include "show_script.hpp"
+#include "support/test_support.hpp"
+
+using namespace cupola;
+
+namespace {
+struct Fixture {
+    ClusterConfig cluster = load_cluster_config(test::source_path("configs/descent-1ch.json"));
+    SceneConfig scene = load_scene_config(cluster.scene_file);
+    ShowScript show = ShowScript::load(cluster.show_file, scene);
+};
+
+// The same snapshot with the Sun moved to `sun_zenith_deg` at the camera (in the plane of the
+// camera's zenith and its current Sun direction).
+Snapshot with_sun_at(const Snapshot& base, const SceneConfig& scene, double sun_zenith_deg) {
+    Snapshot s = base;
+    const auto earth = scene.find("earth")->id, sun = scene.find("sun")->id;
+    const glm::dvec3 up = glm::normalize(s.camera_position_m - s.bodies[earth].position_m);
+    glm::dvec3 toward = s.bodies[sun].position_m - s.camera_position_m;
+    toward = glm::normalize(toward - glm::dot(toward, up) * up);
+    const double z = glm::radians(sun_zenith_deg);
+    s.bodies[sun].position_m = s.camera_position_m + 1.496e11 * (std::cos(z) * up + std::sin(z) * toward);
+    return s;
+}
+}  // namespace
+
+TEST(AutoExposure, FollowsTheSkyFromNoonToNight) {
+    Fixture f;
+    ASSERT_TRUE(f.cluster.output.auto_exposure.enabled);
+    const AutoExposure ae(f.cluster, f.scene);
+    const Snapshot ground = make_frame_snapshot(f.cluster, f.scene, f.show, 28);  // 1 km up, at sunset
+    const double noon = ae.exposure(with_sun_at(ground, f.scene, 20.0));
+    const double sunset = ae.exposure(with_sun_at(ground, f.scene, 88.0));
+    const double night = ae.exposure(with_sun_at(ground, f.scene, 130.0));
+    EXPECT_GT(sunset, 3.0 * noon);
+    EXPECT_GT(night, 100.0 * sunset);
+    EXPECT_DOUBLE_EQ(night, f.cluster.output.auto_exposure.max_exposure);  // a black sky: the clamp
+    // Noon daylight over the ground is thousands of cd/m^2 in this physical scene: key / L.
+    const double mean = ae.mean_luminance(with_sun_at(ground, f.scene, 20.0));
+    EXPECT_GT(mean, 1000.0);
+    EXPECT_LT(mean, 50000.0);
+    EXPECT_NEAR(noon, f.cluster.output.auto_exposure.key / mean, 1e-12 * noon);
+}
+
+TEST(AutoExposure, IsOneDeterministicValuePerFrameInTheSnapshot) {
+    Fixture f;
+    const AutoExposure ae(f.cluster, f.scene);
+    for (uint64_t frame : {0u, 12u, 28u}) {
+        const Snapshot a = make_frame_snapshot(f.cluster, f.scene, f.show, frame, &ae);
+        const Snapshot b = make_frame_snapshot(f.cluster, f.scene, f.show, frame, &ae);
+        EXPECT_EQ(a, b);  // recomputable from the show alone: no hidden state
+        EXPECT_FLOAT_EQ(a.settings.exposure, static_cast<float>(ae.exposure(a)));
+        EXPECT_GE(a.settings.exposure, f.cluster.output.auto_exposure.min_exposure);
+        EXPECT_LE(a.settings.exposure, f.cluster.output.auto_exposure.max_exposure);
+    }
+    // Fixed exposure when auto exposure is off.
+    f.cluster.output.auto_exposure.enabled = false;
+    f.cluster.output.exposure = 0.25;
+    const AutoExposure off(f.cluster, f.scene);
+    EXPECT_FLOAT_EQ(make_frame_snapshot(f.cluster, f.scene, f.show, 5, &off).settings.exposure, 0.25f);
+}
