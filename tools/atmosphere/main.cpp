@@ -79,8 +79,11 @@ int main(int argc, char** argv) {
     app.add_flag("-v,--verbose", verbose, "log table building");
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "cupola-atmosphere: " << e.what() << "\nrun with --help for usage\n";
+        return 2;
     }
     return cupola::run_main("cupola-atmosphere", [&]() -> int {
         cupola::setup_logging("cupola-atmosphere", verbose, !verbose);
