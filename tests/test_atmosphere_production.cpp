@@ -324,3 +324,26 @@ TEST(ProductionVsReference, TheAnalyticFastModeIsMeasuredAndWorseThanTheTables) 
     EXPECT_GT(rf.overall.median, rd.overall.median);
     EXPECT_TRUE(std::isfinite(rf.overall.p99));
 }
+
+TEST(ProductionMars, DustySkyIsReddishAndTracksTheReference) {
+    const at::ProductionAtmosphere m(at::AtmosphereParameters::mars(), at::production_quality("medium"), no_cache());
+    at::ReferenceSettings rs;
+    rs.ms_paths = 1024;
+    rs.scattering_orders = 12;  // optical depth ~0.5 of dust: high orders matter near the horizon
+    const at::ReferenceIntegrator ref(at::AtmosphereParameters::mars(), rs);
+    for (const at::SkyQuery q : {at::SkyQuery{0.0, 45.0, 30.0, 90.0}, at::SkyQuery{0.0, 80.0, 60.0, 180.0},
+                                 at::SkyQuery{0.0, 60.0, 45.0, 0.0}}) {
+        const at::ProductionRadiance p = m.sky(q);
+        const at::SkyRadiance r = ref.sky(q);
+        std::printf("mars vz %.0f sz %.0f az %.0f: production %.4g reference %.4g cd/m^2, rgb %.3g %.3g %.3g\n",
+                    q.view_zenith_deg, q.sun_zenith_deg, q.relative_azimuth_deg, p.luminance, r.luminance, p.rgb.r,
+                    p.rgb.g, p.rgb.b);
+        EXPECT_GT(p.rgb.r, p.rgb.b);  // butterscotch, not blue: the dust's albedo falls toward the blue
+        EXPECT_GT(r.rgb.r, r.rgb.b);
+        // Known weakness, measured and documented (docs/atmosphere-speed-vs-error.md): Mars' dust
+        // (optical depth 0.5, g 0.65) scatters many times and keeps its forward peak, which the
+        // isotropic multiple-scattering table cannot follow: -15 % toward the Sun, +40 % low in the
+        // anti-solar sky. The bound guards against regressions beyond that.
+        EXPECT_NEAR(p.luminance, r.luminance, 0.5 * r.luminance);
+    }
+}
