@@ -86,9 +86,7 @@ void main() {
 
     AtmosphereSegment seg;
     if (u_analytic != 0) {
-        float t_end = ground ? atm_distance_to_ground(u_atm, st.r, st.mu) : atm_distance_to_top(u_atm, st.r, st.mu);
-        if (t_geometry >= 0.0) t_end = min(t_end, max(t_geometry - st.offset, 0.0));
-        seg = atm_analytic(u_atm, u_fit, st.r, st.mu, st.mu_s, st.nu, t_end);
+        seg = atm_analytic_view_ray(u_atm, u_fit, st, t_geometry);
     } else {
         seg = atm_view_ray(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size, u_use_ms != 0, st,
                            t_geometry, u_samples);

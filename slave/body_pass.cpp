@@ -3,14 +3,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "atmosphere/solar_scale.hpp"
 #include "body_texture.hpp"
 
 namespace cupola {
 
 double sun_irradiance(const SunLight& sun, double d_m) {
     if (!sun.present || d_m <= 0.0) return 0.0;
-    const double ratio = std::min(sun.radius_m / d_m, 1.0);
-    return std::numbers::pi * sun.radiance * (1.0 - sun.limb_u / 3.0) * ratio * ratio;
+    return atmosphere::sun_irradiance_scene_units(sun.radiance, sun.radius_m, sun.limb_u, d_m);
 }
 
 BodyPass::BodyPass(const SceneConfig& scene) : program_("sphere.vert", "body.frag") {

@@ -17,6 +17,4 @@ shading::Texture2DData production_color_weights(const AtmosphereParameters& p) {
     return t;
 }
 
-glm::dvec3 xyz_to_srgb(const glm::dvec3& xyz) { return xyz_to_linear_srgb(xyz); }
-
 }  // namespace cupola::atmosphere

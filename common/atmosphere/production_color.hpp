@@ -13,6 +13,4 @@ inline constexpr int kColorWavelengths = 48;  // 360..830 nm in 10 nm steps
 
 shading::Texture2DData production_color_weights(const AtmosphereParameters& p);
 
-glm::dvec3 xyz_to_srgb(const glm::dvec3& xyz);
-
 }  // namespace cupola::atmosphere

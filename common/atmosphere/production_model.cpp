@@ -26,8 +26,9 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
     // Ozone: band averages rather than point values. The Chappuis band peaks near 600 nm, between
     // the green and red samples, where the eye is most sensitive; point values at 550/680 nm miss
     // it, which made long ozone paths (twilight, the ground seen from space) 5-15 % too bright.
-    // Each channel takes the mean over its reconstruction hat (the same piecewise interpolation
-    // atm_samples_to_xyz uses), weighted by the solar spectrum times the CIE y function.
+    // Each channel takes the mean over a hat function linear in lambda through the three sample
+    // wavelengths (close to, not the same as, atm_samples_to_xyz's log-log reconstruction),
+    // weighted by the solar spectrum times the CIE y function.
     {
         const double lr = kProductionWavelengths[0], lg = kProductionWavelengths[1], lb = kProductionWavelengths[2];
         glm::dvec3 num(0.0), den(0.0);
@@ -100,18 +101,10 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
     const vec2 es(tables_.irradiance.width, tables_.irradiance.height);
     const bool ground = st.valid && atm_ray_hits_ground(a, st.r, st.mu);
     const bool geometry_first = t_geometry >= 0.0f && (!ground || t_geometry < atm_ground_distance(a, st));
-    AtmosphereSegment seg;
-    if (quality_.analytic) {
-        seg.inscatter = vec3(0.0f);
-        seg.transmittance = vec3(1.0f);
-        if (st.valid) {
-            float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
-            if (t_geometry >= 0.0f) t_end = std::min(t_end, std::max(t_geometry - st.offset, 0.0f));
-            seg = atm_analytic(a, fit_, st.r, st.mu, st.mu_s, st.nu, t_end);
-        }
-    } else {
-        seg = atm_view_ray(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry, quality_.view_samples);
-    }
+    const AtmosphereSegment seg =
+        quality_.analytic
+            ? atm_analytic_view_ray(a, fit_, st, t_geometry)
+            : atm_view_ray(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry, quality_.view_samples);
     vec3 out = seg.inscatter;
     if (ground && !geometry_first) {
         vec3 surface;
@@ -145,7 +138,7 @@ ProductionRadiance ProductionAtmosphere::sky(const SkyQuery& q) const {
     vec3 t;
     const vec3 f = radiance(st, -1.0f, &t);
     out.xyz = to_xyz(f);
-    out.rgb = xyz_to_srgb(out.xyz);
+    out.rgb = xyz_to_linear_srgb(out.xyz);
     out.luminance = out.xyz.y;
     out.transmittance = glm::dvec3(t);
     out.in_atmosphere = st.valid;

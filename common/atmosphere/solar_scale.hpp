@@ -7,8 +7,10 @@
 
 namespace cupola::atmosphere {
 
-// Irradiance (scene units) of a limb-darkened Sun disc of the given radiance seen from distance_m:
-// L * pi * (R / d)^2 * (1 - u / 3) (linear limb darkening integrated over the disc).
+// Irradiance (scene units) of a limb-darkened Sun disc of disc-centre radiance L, radius R and
+// linear limb-darkening u seen from distance_m: L * pi * (R / d)^2 * (1 - u / 3), with R / d
+// capped at 1. The one formula the body pass, the atmosphere pass and the auto exposure use.
+double sun_irradiance_scene_units(double radiance, double radius_m, double limb_u, double distance_m);
 double sun_irradiance_scene_units(const BodyConfig& sun, double distance_m);
 
 // Illuminance (lux) of the model's physical Sun: Y of f = 1 in every channel.

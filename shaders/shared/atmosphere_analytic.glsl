@@ -35,3 +35,9 @@ AtmosphereSegment atm_analytic(AtmosphereParams a, AtmosphereAnalyticFit fit, fl
     s.transmittance = f_ext;
     return s;
 }
+
+// The fast model over a whole camera ray, ended like atm_view_ray.
+AtmosphereSegment atm_analytic_view_ray(AtmosphereParams a, AtmosphereAnalyticFit fit, AtmosphereRayStart st,
+                                        float t_geometry) {
+    return atm_analytic(a, fit, st.r, st.mu, st.mu_s, st.nu, atm_view_ray_length(a, st, t_geometry));
+}

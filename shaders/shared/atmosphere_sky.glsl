@@ -92,19 +92,22 @@ vec3 atm_compute_irradiance(AtmosphereParams a, sampler2D trans, vec2 trans_size
     return e * (2.0 * CUPOLA_PI / float(directions));
 }
 
-// A whole view ray from a camera (see atm_ray_start): in-scatter and transmittance up to the
-// ground, the top of the atmosphere, or scene geometry at t_geometry metres from the camera
-// (t_geometry < 0: none). analytic selects the seed-000 fast model (fit used only then).
-AtmosphereSegment atm_view_ray(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                               bool use_ms, AtmosphereRayStart st, float t_geometry, int samples) {
-    AtmosphereSegment none;
-    none.inscatter = vec3(0.0);
-    none.transmittance = vec3(1.0);
-    if (!st.valid) return none;
+// Length of the atmospheric part of a camera ray (see atm_ray_start), from its start: to the
+// ground, the top of the atmosphere, or scene geometry t_geometry metres from the camera
+// (t_geometry < 0: none); 0 when the ray misses the atmosphere. Every model ends rays here.
+float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geometry) {
+    if (!st.valid) return 0.0;
     bool ground = atm_ray_hits_ground(a, st.r, st.mu);
     float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
     if (t_geometry >= 0.0) t_end = min(t_end, max(t_geometry - st.offset, 0.0));
-    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu, t_end, samples);
+    return t_end;
+}
+
+// A whole view ray from a camera: in-scatter and transmittance over atm_view_ray_length.
+AtmosphereSegment atm_view_ray(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
+                               bool use_ms, AtmosphereRayStart st, float t_geometry, int samples) {
+    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu,
+                     atm_view_ray_length(a, st, t_geometry), samples);
 }
 
 // Distance from the camera to the ground along the ray, or -1 when it does not meet the ground.
