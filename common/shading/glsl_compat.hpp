@@ -37,6 +37,7 @@ using glm::floor;
 using glm::fract;
 using glm::length;
 using glm::log;
+using glm::log2;
 using glm::max;
 using glm::min;
 using glm::mix;
@@ -61,6 +62,7 @@ inline float smoothstep(float e0, float e1, float x) {
 }
 inline float atan(float y, float x) { return std::atan2(y, x); }
 inline float abs(float x) { return std::fabs(x); }
+inline float log2(float x) { return std::log2(x); }
 inline float sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f); }
 
 // vecN (float) combined with a double literal, as GLSL allows.

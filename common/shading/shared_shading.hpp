@@ -6,6 +6,7 @@
 namespace cupola::shading {
 // Data types first, outside the anonymous namespace: one type in every translation unit.
 #include "shared/atmosphere_types.glsl"
+#include "shared/eclipse_types.glsl"
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -24,6 +25,7 @@ namespace {
 #include "shared/atmosphere_sky.glsl"
 #include "shared/atmosphere_analytic.glsl"
 #include "shared/atmosphere_color.glsl"
+#include "shared/eclipse_shadow.glsl"
 }  // namespace
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
@@ -32,7 +34,7 @@ namespace {
 
 namespace cupola {
 // The shared files in the order a shader needs them prepended (after its #version line).
-inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl", "shared/constants.glsl", "shared/limb_darkening.glsl",
+inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl", "shared/eclipse_types.glsl", "shared/constants.glsl", "shared/limb_darkening.glsl",
                                                   "shared/star_psf.glsl", "shared/star_color.glsl",
                                                   "shared/sphere_view.glsl",
                                                   "shared/atmosphere_params.glsl",
@@ -41,5 +43,6 @@ inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl"
                                                   "shared/atmosphere_tables.glsl",
                                                   "shared/atmosphere_sky.glsl",
                                                   "shared/atmosphere_analytic.glsl",
-                                                  "shared/atmosphere_color.glsl"};
+                                                  "shared/atmosphere_color.glsl",
+                                                  "shared/eclipse_shadow.glsl"};
 }  // namespace cupola

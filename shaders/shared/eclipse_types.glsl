@@ -1,0 +1,31 @@
+// Plain data types of the shared eclipse code (shared by GLSL and C++; see atmosphere_types.glsl
+// for why types live apart from the functions).
+
+// Shadow modes (RenderSettings::flags carries one per frame, switchable at runtime).
+const int ECLIPSE_MODE_EXACT = 0;         // limb-darkened disc overlap, Gauss-Legendre in radius
+const int ECLIPSE_MODE_FAST = 1;          // the seed's linear penumbra, Butterworth umbra edge
+const int ECLIPSE_MODE_LUT = 2;           // 2D table: radius ratio x normalised separation
+const int ECLIPSE_MODE_ILLUSTRATIVE = 3;  // umbra, antumbra and penumbra as uniform tints
+
+const int ECLIPSE_MAX_CASTERS = 4;  // per receiver in one pass
+
+// One caster seen from a receiver point, in units of the Sun's apparent (angular) radius.
+struct EclipseDiscs {
+    float ratio;       // a = occluder angular radius / Sun angular radius
+    float separation;  // s = angle between the centres / Sun angular radius
+    float sun_radius;  // the Sun's angular radius, radians
+};
+
+// Everything a pass needs to shadow one receiver: positions are relative to the receiver's
+// centre in metres (differences taken in double on the CPU, then rounded to float), so a point
+// on the receiver is just normal * radius and no large coordinate ever reaches the GPU.
+struct EclipseCasters {
+    int count;                 // 0: nothing can shadow this receiver this frame (skip all work)
+    int mode;                  // ECLIPSE_MODE_*
+    float limb_u;              // the Sun's linear limb-darkening coefficient
+    float butterworth_order;   // fast mode: sharpness n of the umbra edge
+    vec4 sun;                  // xyz: Sun centre, w: Sun radius
+    vec4 caster[ECLIPSE_MAX_CASTERS];       // xyz: caster centre, w: caster radius
+    vec3 umbra_light[ECLIPSE_MAX_CASTERS];  // light left deep in the caster's umbra per unit
+                                            // sunlight (refraction through its atmosphere), rgb
+};
