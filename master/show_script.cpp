@@ -4,8 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <erfa.h>
+#include <erfam.h>
+
 #include "config/json_reader.hpp"
-#include "scene/analytic_ephemeris.hpp"
+#include "eclipse/shadow_casters.hpp"
+#include "scene/ephemeris.hpp"
 #include "scene/sim_time.hpp"
 
 namespace cupola {
@@ -40,15 +44,29 @@ ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
         } catch (const std::invalid_argument& e) {
             k.fail("time_utc", e.what());
         }
+        if (k.has("shadow_mode"))
+            f.shadow_mode = shadow_mode_from_name(k.one_of("shadow_mode", shadow_mode_names()));
         auto c = k.child("camera");
         f.camera.anchor = body_id(c, "anchor");
         f.camera.offset_m = c.optional_dvec3("offset_m").value_or(glm::dvec3(0.0));
+        if (auto o = c.optional_child("observer")) {
+            if (!f.camera.anchor) c.fail("observer", "an observer needs an anchor body to stand on");
+            if (c.has("offset_m")) c.fail("offset_m", "give observer or offset_m, not both");
+            ObserverSite site;
+            site.lat_deg = o->number_in("lat_deg", -90.0, 90.0);
+            site.lon_deg = o->number_in("lon_deg", -360.0, 360.0);
+            site.alt_m = o->number_in("alt_m", 0.0, 1.0e8, 0.0);
+            o->reject_unknown_keys();
+            site.look_azimuth_deg = c.number_in("look_azimuth_deg", -360.0, 360.0, site.look_azimuth_deg);
+            site.look_elevation_deg = c.number_in("look_elevation_deg", -90.0, 90.0, site.look_elevation_deg);
+            f.camera.observer = site;
+        }
         f.camera.look_at = body_id(c, "look_at");
         if (auto d = c.optional_dvec3("look_direction")) {
             if (f.camera.look_at) c.fail("look_direction", "give look_at or look_direction, not both");
             if (glm::length(*d) == 0.0) c.fail("look_direction", "must not be the zero vector");
             f.camera.look_direction = glm::normalize(*d);
-        } else if (!f.camera.look_at) {
+        } else if (!f.camera.look_at && !f.camera.observer) {
             c.fail("look_at", "missing: give look_at (a body) or look_direction");
         }
         if (auto u = c.optional_dvec3("up")) {
@@ -72,15 +90,42 @@ struct CameraPose {
 };
 
 glm::dvec3 body_position(const SceneConfig& scene, uint16_t id, double t) {
-    return analytic_body_state(scene.bodies.at(id), t).position_m;
+    return body_state(scene.bodies.at(id), t).position_m;
+}
+
+// Unit direction of a surface site in the body frame (z = north pole, x = prime meridian):
+// geodetic WGS84 latitude on the Earth (ERFA), spherical elsewhere.
+glm::dvec3 site_direction(const BodyConfig& body, const ObserverSite& o) {
+    const double lat = glm::radians(o.lat_deg), lon = glm::radians(o.lon_deg);
+    if (body.ephemeris == "earth") {
+        double xyz[3];
+        if (eraGd2gc(ERFA_WGS84, lon, lat, 0.0, xyz) == 0) return glm::normalize(glm::dvec3(xyz[0], xyz[1], xyz[2]));
+    }
+    return {std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)};
 }
 
 CameraPose pose_at(const CameraKey& k, const SceneConfig& scene, double t) {
     CameraPose p;
-    p.position = (k.anchor ? body_position(scene, *k.anchor, t) : glm::dvec3(0.0)) + k.offset_m;
-    glm::dvec3 fwd = k.look_at ? body_position(scene, *k.look_at, t) - p.position : k.look_direction;
+    glm::dvec3 fwd, up = k.up;
+    if (k.observer && k.anchor) {
+        // On the surface, turning with the body: local east-north-up from its orientation.
+        const BodyConfig& body = scene.bodies.at(*k.anchor);
+        const BodyState st = body_state(body, t);
+        const glm::dmat3 to_world = glm::mat3_cast(st.orientation);
+        const glm::dvec3 zenith = to_world * site_direction(body, *k.observer);
+        p.position = st.position_m + zenith * (body.radius_m + k.observer->alt_m);
+        glm::dvec3 north = to_world * glm::dvec3(0, 0, 1) - zenith * glm::dot(to_world * glm::dvec3(0, 0, 1), zenith);
+        north = glm::length(north) > 1e-9 ? glm::normalize(north) : glm::normalize(glm::cross(zenith, glm::dvec3(0, 1, 0)));
+        const glm::dvec3 east = glm::cross(north, zenith);
+        const double az = glm::radians(k.observer->look_azimuth_deg), el = glm::radians(k.observer->look_elevation_deg);
+        fwd = k.look_at ? body_position(scene, *k.look_at, t) - p.position
+                        : std::cos(el) * (std::cos(az) * north + std::sin(az) * east) + std::sin(el) * zenith;
+        up = zenith;
+    } else {
+        p.position = (k.anchor ? body_position(scene, *k.anchor, t) : glm::dvec3(0.0)) + k.offset_m;
+        fwd = k.look_at ? body_position(scene, *k.look_at, t) - p.position : k.look_direction;
+    }
     fwd = glm::length(fwd) > 0 ? glm::normalize(fwd) : glm::dvec3(0, 1, 0);
-    glm::dvec3 up = k.up;
     if (std::abs(glm::dot(up, fwd)) > 0.999) up = std::abs(fwd.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
     const glm::dvec3 right = glm::normalize(glm::cross(fwd, up));
     const glm::dvec3 cam_up = glm::cross(right, fwd);
@@ -119,7 +164,11 @@ Snapshot ShowScript::evaluate(double show_time_s, const SceneConfig& scene) cons
     const double smooth = f * f * (3.0 - 2.0 * f);  // ease in and out between keyframes
     s.camera_position_m = pa.position + (pb.position - pa.position) * smooth;
     s.camera_orientation = glm::normalize(glm::slerp(pa.orientation, pb.orientation, smooth));
-    for (const auto& body : scene.bodies) s.bodies.push_back(analytic_body_state(body, t));
+    for (const auto& body : scene.bodies) s.bodies.push_back(body_state(body, t));
+    ShadowMode mode = scene.shadows.mode;
+    for (size_t k = 0; k <= i; ++k)
+        if (keys_[k].shadow_mode) mode = *keys_[k].shadow_mode;
+    s.settings.flags = with_shadow_mode(s.settings.flags, mode);
     return s;
 }
 

@@ -11,9 +11,15 @@
 //                   "offset_m": [x, y, z],  // from the anchor, world (equatorial) axes, metres
 //                   "look_at": "moon",      // or "look_direction": [x, y, z]
 //                   "up": [0, 0, 1],        // world up hint (default: celestial north)
-//                   "target_elevation_deg": 40 } }  // raise the target above the dome's front horizon
+//                   "target_elevation_deg": 40 },  // raise the target above the dome's front horizon
+//     "shadow_mode": "exact" }              // optional: exact|fast|lut|illustrative|off from here on
 //   ]
 // }
+// A ground observer instead of offset_m: "observer": { "lat_deg": 23.15, "lon_deg": 16.73,
+// "alt_m": 2 } on the anchor body (geodetic WGS84 latitude on the Earth, rotating with it),
+// looking along "look_azimuth_deg" (from north through east, default 180) and
+// "look_elevation_deg" (default 0), or at "look_at"; the camera's up (the dome's apex) is the
+// local zenith.
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,9 +29,18 @@
 
 namespace cupola {
 
+struct ObserverSite {
+    double lat_deg = 0.0;
+    double lon_deg = 0.0;  // east positive
+    double alt_m = 0.0;
+    double look_azimuth_deg = 180.0;
+    double look_elevation_deg = 0.0;
+};
+
 struct CameraKey {
     std::optional<uint16_t> anchor;       // body id
     glm::dvec3 offset_m{0.0};
+    std::optional<ObserverSite> observer;  // on the anchor's surface (replaces offset_m)
     std::optional<uint16_t> look_at;      // body id
     glm::dvec3 look_direction{0, 1, 0};
     glm::dvec3 up{0, 0, 1};
@@ -36,6 +51,7 @@ struct ShowKeyframe {
     double at_s = 0.0;
     double sim_time_s = 0.0;
     CameraKey camera;
+    std::optional<ShadowMode> shadow_mode;  // from this keyframe on
 };
 
 class ShowScript {
@@ -43,7 +59,8 @@ public:
     ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s);
     static ShowScript load(const std::string& file, const SceneConfig& scene);
 
-    // The snapshot for a show time: sim time, camera and every body's state (analytic ephemeris).
+    // The snapshot for a show time: sim time, camera, every body's state (ephemeris) and the
+    // shadow mode (the scene's default until a keyframe switches it) in settings.flags.
     Snapshot evaluate(double show_time_s, const SceneConfig& scene) const;
 
     double frame_interval_s() const { return frame_interval_s_; }

@@ -6,6 +6,9 @@
 // geometry in front. Where the pixel shows this planet's surface, the surface is relit through
 // the atmosphere: reflectance / pi * (direct Sun through the air + sky irradiance). Only
 // directions and camera-relative ratios/distances enter (d, c_hat from the CPU in double).
+// Eclipse shadows (u_ecl, positions relative to the planet centre in the channel frame) dim the
+// sunlight on the relit surface and at every march sample: the Moon's shadow makes a hole in
+// the in-scattered light and the sky darkens around an observer in totality.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;   // unit, channel frame: camera -> planet centre
@@ -29,6 +32,9 @@ uniform sampler2D u_transmittance;
 uniform sampler2D u_multiple_scattering;
 uniform sampler2D u_irradiance;
 uniform sampler2D u_weights;
+uniform EclipseCasters u_ecl;
+uniform sampler2D u_eclipse_lut;
+uniform vec2 u_eclipse_lut_size;
 
 layout(location = 0) out vec4 frag_color;
 
@@ -63,6 +69,10 @@ void main() {
         surface = g < 0.0 || g >= t_hit * (1.0 - 1e-3);
     }
 
+    // Illustrative shadows: the air is drawn unshadowed and each pixel showing the surface is
+    // tinted (RGB) by the region of its surface point, so the whole penumbra shows.
+    bool illustrative = u_ecl.count > 0 && u_ecl.mode == ECLIPSE_MODE_ILLUSTRATIVE;
+    vec3 tint = vec3(1.0);
     vec3 base;
     float t_geometry;
     if (surface) {
@@ -75,7 +85,15 @@ void main() {
             illuminance = atm_surface_illuminance(u_atm, u_transmittance, u_trans_size, u_irradiance, u_irr_size,
                                                   u_atm.bottom_radius, mu_s_g);
         }
-        base = reflectance * to_scene_rgb(illuminance) * (1.0 / CUPOLA_PI);
+        vec3 light = vec3(1.0);
+        if (u_ecl.count > 0) {  // direct Sun and sky light alike (the sky over a shadow is shadowed)
+            light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances.y);
+        }
+        if (illustrative) {  // a display colour, applied in RGB to the whole pixel below
+            tint = light;
+            light = vec3(1.0);
+        }
+        base = reflectance * to_scene_rgb(illuminance * light) * (1.0 / CUPOLA_PI);
         // -1: the march ends exactly at the ground; a grazing ray the atmosphere thinks misses
         // the ground ends at the surface.
         t_geometry = ground ? -1.0 : max(g, t_hit);
@@ -84,12 +102,20 @@ void main() {
         t_geometry = g;
     }
 
+    // The march's start (the camera moved st.offset along v), relative to the planet centre.
+    EclipseRay shadow = eclipse_ray(u_ecl, u_eclipse_lut_size, v * st.offset - u_center_dir * u_d, v);
+    if (illustrative) {
+        shadow.casters.count = 0;
+    }
     AtmosphereSegment seg;
     if (u_analytic != 0) {
         seg = atm_analytic_view_ray(u_atm, u_fit, st, t_geometry);
+        // The fast model lights the whole ray with the sunlight at its middle; so its shadow.
+        seg.inscatter = seg.inscatter *
+                        eclipse_light_along(shadow, u_eclipse_lut, 0.5 * atm_view_ray_length(u_atm, st, t_geometry));
     } else {
-        seg = atm_view_ray(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size, u_use_ms != 0, st,
-                           t_geometry, u_samples);
+        seg = atm_view_ray_shadowed(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
+                                    u_use_ms != 0, st, t_geometry, u_samples, shadow, u_eclipse_lut);
     }
-    frag_color = vec4(base * seg.transmittance + to_scene_rgb(seg.inscatter), scene.a);
+    frag_color = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter)) * tint, scene.a);
 }

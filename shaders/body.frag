@@ -2,6 +2,8 @@
 // A planet or moon: analytic ray-sphere hit, equirectangular texture in the body frame
 // (lon = atan(y, x), north = +Z), Lambert-lit by the sun. Also writes the deferred geometry
 // the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres.
+// Eclipse shadows: the sunlight at the surface point (normal * radius, relative to the centre,
+// like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl).
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;       // unit, channel frame
@@ -12,6 +14,9 @@ uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards t
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
 uniform vec3 u_reflectance;      // albedo * tint
 uniform sampler2D u_texture;     // linear RGB, row 0 = north
+uniform EclipseCasters u_ecl;    // channel frame, metres from the body's centre
+uniform sampler2D u_eclipse_lut;
+uniform vec2 u_eclipse_lut_size;
 
 layout(location = 0) out vec4 frag_color;
 layout(location = 1) out vec4 frag_geometry;  // (reflectance, distance)
@@ -29,6 +34,10 @@ void main() {
     vec2 uv = vec2(0.5 + lon / (2.0 * CUPOLA_PI), 0.5 - lat / CUPOLA_PI);
     vec3 albedo_map = textureLod(u_texture, uv, 0.0).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
-    frag_color = vec4(u_lit * cos_i * albedo_map, 1.0);
+    vec3 light = vec3(1.0);
+    if (u_ecl.count > 0 && cos_i > 0.0) {
+        light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances.y);
+    }
+    frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
     frag_geometry = vec4(u_reflectance * albedo_map, sphere_hit_distance(v, u_center_dir, hit.w, u_distances));
 }

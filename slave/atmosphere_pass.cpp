@@ -41,7 +41,7 @@ void set_params(const GlProgram& p, const shading::AtmosphereParams& a) {
     p.set("u_atm.ground_albedo", a.ground_albedo);
 }
 
-enum Unit : GLuint { kScene = 0, kGeometry = 1, kTables = 2 };  // tables: 2..5
+enum Unit : GLuint { kScene = 0, kGeometry = 1, kTables = 2, kEclipseLut = 6 };  // tables: 2..5
 
 }  // namespace
 
@@ -78,7 +78,8 @@ AtmospherePass::AtmospherePass() : program_("fullscreen.vert", "atmosphere.frag"
 
 void AtmospherePass::draw(const ChannelView& view, const GpuAtmosphere& atm, const BodyState& state,
                           const SphereView& sphere, const SunLight& sun, const GlTexture& scene,
-                          const GlTexture& geometry) {
+                          const GlTexture& geometry, const EclipseShadowUniforms& shadows,
+                          const shading::EclipseCasters& casters) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const atmosphere::ProductionQuality& q = m.quality();
     // Direction to the Sun from the planet's centre (as the body pass lights it), and the
@@ -122,6 +123,7 @@ void AtmospherePass::draw(const ChannelView& view, const GpuAtmosphere& atm, con
     scene.bind(kScene);
     geometry.bind(kGeometry);
     atm.bind(kTables);
+    shadows.apply(program_, casters, kEclipseLut);
     vao_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     gl::check("atmosphere pass (" + m.parameters().name + ")");

@@ -17,6 +17,7 @@
 #include "atmosphere/production_model.hpp"
 #include "body_pass.hpp"
 #include "config/scene_config.hpp"
+#include "eclipse_shadow_uniforms.hpp"
 #include "gl_buffer.hpp"
 #include "gl_program.hpp"
 #include "gl_texture.hpp"
@@ -52,7 +53,8 @@ public:
     // Draws into the bound framebuffer (the whole viewport). scene: colour so far; geometry: the
     // body pass's (reflectance, distance), distance < 0 where nothing was drawn.
     void draw(const ChannelView& view, const GpuAtmosphere& atmosphere, const BodyState& state,
-              const SphereView& sphere, const SunLight& sun, const GlTexture& scene, const GlTexture& geometry);
+              const SphereView& sphere, const SunLight& sun, const GlTexture& scene, const GlTexture& geometry,
+              const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
 
 private:
     GlProgram program_;

@@ -22,7 +22,7 @@ BodyPass::BodyPass(const SceneConfig& scene) : program_("sphere.vert", "body.fra
 }
 
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
-                    const SunLight& sun) {
+                    const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
     const auto tex = textures_.find(body.id);
     if (tex == textures_.end()) return;
     const glm::dvec3 to_sun = sun.position_m - state.position_m;  // double, world frame
@@ -38,6 +38,7 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program_.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
     program_.set("u_texture", 0);
     tex->second->bind(0);
+    shadows.apply(program_, casters, 1);
     vao_.bind();
     draw_sphere(program_, view, sphere);
     gl::check("body pass (" + body.name + ")");

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "config/scene_config.hpp"
+#include "eclipse_shadow_uniforms.hpp"
 #include "gl_buffer.hpp"
 #include "gl_program.hpp"
 #include "gl_texture.hpp"
@@ -30,8 +31,9 @@ double sun_irradiance(const SunLight& sun, double d_m);
 class BodyPass {
 public:
     explicit BodyPass(const SceneConfig& scene);  // loads every planet/moon texture once
+    // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
-              const SunLight& sun);
+              const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
 
 private:
     GlProgram program_;

@@ -8,6 +8,9 @@
 
 #include "atmosphere_pass.hpp"
 #include "body_pass.hpp"
+#include "eclipse/shadow_casters.hpp"
+#include "eclipse/umbra_light.hpp"
+#include "eclipse_shadow_uniforms.hpp"
 #include "gl_framebuffer.hpp"
 #include "projection/dome_frame.hpp"
 #include "scene/star_catalog.hpp"
@@ -22,6 +25,23 @@ std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> load_atmospheres(const SceneC
     std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> out;
     for (const auto& b : scene.bodies)
         if (b.kind != BodyKind::Star && b.atmosphere.present) out[b.id] = std::make_unique<GpuAtmosphere>(b);
+    return out;
+}
+
+double scene_sun_limb_u(const SceneConfig& scene) {
+    for (const auto& b : scene.bodies)
+        if (b.kind == BodyKind::Star) return b.limb_darkening_u;
+    return 0.0;
+}
+
+std::map<uint16_t, glm::vec3> umbra_lights(const SceneConfig& scene,
+                                           const std::map<uint16_t, std::unique_ptr<GpuAtmosphere>>& atmospheres) {
+    std::map<uint16_t, glm::vec3> out;
+    for (const auto& b : scene.bodies) {
+        if (b.kind == BodyKind::Star) continue;
+        const auto a = atmospheres.find(b.id);
+        out[b.id] = umbra_light(b, a != atmospheres.end() ? &a->second->model() : nullptr);
+    }
     return out;
 }
 }  // namespace
@@ -44,7 +64,9 @@ struct SceneRenderer::Impl {
           target_b({&color_b}),
           stars(sc.stars, load_star_catalog(sc.stars.catalog, sc.stars.magnitude_limit)),
           bodies(sc),
-          atmospheres(load_atmospheres(sc)) {
+          atmospheres(load_atmospheres(sc)),
+          casting(scene, umbra_lights(scene, atmospheres)),
+          shadows(scene_sun_limb_u(scene)) {
         stats.tables_built_or_loaded = static_cast<int>(atmospheres.size());
         if (!atmospheres.empty()) atmosphere = std::make_unique<AtmospherePass>();
     }
@@ -59,6 +81,8 @@ struct SceneRenderer::Impl {
     BodyPass bodies;
     std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by body id
     std::unique_ptr<AtmospherePass> atmosphere;                       // only when some body has one
+    ShadowCasting casting;          // which casters shadow which receiver, per frame (CPU, double)
+    EclipseShadowUniforms shadows;  // the eclipse table and uniforms of the shadowed passes
     AtmosphereStats stats;
 };
 
@@ -115,11 +139,17 @@ Image SceneRenderer::render(const Snapshot& snap) {
     }
     std::stable_sort(items.begin(), items.end(),
                      [](const Item& a, const Item& b) { return a.sphere.distance_m > b.sphere.distance_m; });
+    // Eclipse shadows: per receiver, the casters whose penumbra reaches it this frame, in the
+    // channel frame relative to the receiver's centre.
+    std::map<uint16_t, shading::EclipseCasters> casters;
+    for (const auto& it : items)
+        if (it.body->kind != BodyKind::Star)
+            casters[it.body->id] = m.casting.casters_for(snap, it.body->id, view.world_to_channel);
     for (const auto& it : items) {
         if (it.body->kind == BodyKind::Star)
             m.sun.draw(view, *it.body, it.sphere);
         else
-            m.bodies.draw(view, *it.body, *it.state, it.sphere, light);
+            m.bodies.draw(view, *it.body, *it.state, it.sphere, light, m.shadows, casters[it.body->id]);
     }
 
     // Pass 4: atmospheres, far to near, each over everything drawn so far.
@@ -135,7 +165,8 @@ Image SceneRenderer::render(const Snapshot& snap) {
         }
         const GlFramebuffer* next = current == &m.target_a ? &m.target_b : &m.target_a;
         next->bind();
-        m.atmosphere->draw(view, *atm->second, *it.state, it.sphere, light, current->color(0), m.geometry);
+        m.atmosphere->draw(view, *atm->second, *it.state, it.sphere, light, current->color(0), m.geometry, m.shadows,
+                           casters[it.body->id]);
         current = next;
         ++run;
     }

@@ -1,12 +1,16 @@
 #pragma once
-// Pass 2: a star of the scene (BodyKind::Star, the Sun) as a limb-darkened disc, drawn as an
-// analytic sphere on a viewpoint-oriented billboard (shaders/sun.frag, shared/limb_darkening.glsl).
+// Pass 2: a star of the scene (BodyKind::Star, the Sun) as a limb-darkened disc with its corona,
+// drawn as an analytic sphere on a viewpoint-oriented billboard (shaders/sun.frag,
+// shared/limb_darkening.glsl). The Moon, nearer, is drawn over it afterwards (painter's order).
 #include "config/scene_config.hpp"
 #include "gl_buffer.hpp"
 #include "gl_program.hpp"
 #include "sphere_billboard.hpp"
 
 namespace cupola {
+
+// The corona reaches this many solar radii (shaders/sun.frag's CORONA_EXTENT).
+constexpr double kCoronaExtent = 6.0;
 
 class SunPass {
 public:

@@ -203,6 +203,7 @@ TEST(EglRender, SunDiscHasItsAngularSizeAndLimbDarkening) {
     sun.radius_m = 6.957e8;
     sun.radiance = 5.8e4;
     sun.limb_darkening_u = 0.6;
+    sun.corona = 0.0;  // the disc alone (the corona has its own test)
     s.scene.bodies = {sun};
     ClusterConfig cluster;
     const ChannelConfig ch = channel(128, 128, {}, FovDeg{1, 1, 1, 1});  // 2 degrees wide
@@ -226,6 +227,47 @@ TEST(EglRender, SunDiscHasItsAngularSizeAndLimbDarkening) {
         for (int x = 0; x < 128; ++x) count += img.pixel(x, y)[0] > 0.0f;
     const double expected = std::numbers::pi * std::pow(std::tan(alpha) * px_per_rad, 2);
     EXPECT_NEAR(count / expected, 1.0, 0.02);
+}
+
+// The corona around the disc: Baumbach's profile relative to the disc's mean radiance, out to
+// six solar radii and nothing beyond (shaders/sun.frag).
+TEST(EglRender, SunCoronaFollowsBaumbachsProfile) {
+    context();
+    OneStarScene s(0.0, -89.0, 6.0, "corona");
+    s.scene.stars.magnitude_limit = -5.0;
+    BodyConfig sun;
+    sun.id = 0;
+    sun.name = "Sun";
+    sun.kind = BodyKind::Star;
+    sun.radius_m = 6.957e8;
+    sun.radiance = 5.8e4;
+    sun.limb_darkening_u = 0.6;
+    sun.corona = 1.0;
+    s.scene.bodies = {sun};
+    ClusterConfig cluster;
+    const ChannelConfig ch = channel(256, 256, {}, FovDeg{2, 2, 2, 2});
+    SceneRenderer r(cluster, ch, s.scene);
+    Snapshot snap;
+    const double d = 1.495978707e11;
+    snap.camera_position_m = glm::dvec3(0, 0, d);
+    snap.bodies = {BodyState{0, glm::dvec3(0.0), {1, 0, 0, 0}}};
+    const Image img = r.render(snap);
+    const double alpha = std::asin(sun.radius_m / d);
+    const double px_per_rad = 256 / (2 * std::tan(2 * kDeg));
+    const double mean_disc = 5.8e4 * (1.0 - 0.6 / 3.0);
+    auto baumbach = [](double rho) {
+        return 1e-6 * (0.0532 * std::pow(rho, -2.5) + 1.425 * std::pow(rho, -7) + 2.565 * std::pow(rho, -17));
+    };
+    for (double rho : {1.5, 2.0, 3.0, 5.0}) {
+        // Pixel centre nearest rho radii to the right of the centre (x = 128 + offset).
+        const int x = static_cast<int>(std::floor(128 + std::tan(rho * alpha) * px_per_rad));
+        const double rho_px = std::atan((x + 0.5 - 128) / px_per_rad) / alpha;
+        EXPECT_NEAR(img.pixel(x, 128)[0] / (mean_disc * baumbach(rho_px)), 1.0, 0.02) << "rho " << rho_px;
+    }
+    const int beyond = static_cast<int>(std::ceil(128 + std::tan(6.2 * alpha) * px_per_rad));
+    EXPECT_EQ(img.pixel(beyond, 128)[0], 0.0f);
+    // The disc is still the disc.
+    EXPECT_NEAR(img.pixel(128, 128)[0] / 5.8e4, 1.0, 0.01);
 }
 
 TEST(EglRender, WhiteLambertBodyAtOneAuIsAboutOne) {

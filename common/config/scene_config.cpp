@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 
 #include "config/cluster_config.hpp"
 #include "config/json_reader.hpp"
@@ -17,7 +18,49 @@ const BodyConfig* SceneConfig::find(const std::string& name) const {
     return nullptr;
 }
 
+const std::vector<std::string>& shadow_mode_names() {
+    static const std::vector<std::string> names{"exact", "fast", "lut", "illustrative", "off"};
+    return names;
+}
+
+ShadowMode shadow_mode_from_name(const std::string& name) {
+    const auto& n = shadow_mode_names();
+    for (size_t i = 0; i < n.size(); ++i)
+        if (n[i] == name) return static_cast<ShadowMode>(i);
+    throw std::invalid_argument("unknown shadow mode \"" + name + "\" (exact, fast, lut, illustrative or off)");
+}
+
 namespace {
+ShadowConfig read_shadows(const JsonReader& r, const SceneConfig& s) {
+    ShadowConfig c;
+    c.mode = shadow_mode_from_name(r.one_of("mode", shadow_mode_names(), "exact"));
+    c.butterworth_order = r.number_in("butterworth_order", 0.5, 64.0, c.butterworth_order);
+    auto id_of = [&](const JsonReader& g, const std::string& key, const std::string& name) {
+        const BodyConfig* b = s.find(name);
+        if (!b) g.fail(key, "no body named \"" + name + "\" in the scene");
+        if (b->kind == BodyKind::Star) g.fail(key, "\"" + name + "\" is a star: stars are light sources, not casters");
+        return b->id;
+    };
+    if (r.has("groups")) {
+        for (auto& g : r.array("groups")) {
+            ShadowGroupConfig group;
+            group.parent = id_of(g, "parent", g.string("parent"));
+            const auto children = g.strings("children", {});
+            if (children.empty()) g.fail("children", "a shadow group needs at least one child");
+            for (const auto& name : children) {
+                const uint16_t id = id_of(g, "children", name);
+                if (id == group.parent) g.fail("children", "\"" + name + "\" is the group's parent");
+                group.children.push_back(id);
+            }
+            group.siblings_shadow_each_other = g.boolean("siblings_shadow_each_other", false);
+            g.reject_unknown_keys();
+            c.groups.push_back(group);
+        }
+    }
+    r.reject_unknown_keys();
+    return c;
+}
+
 AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
     AtmosphereConfig c;
     c.present = true;
@@ -65,7 +108,7 @@ SceneConfig load_scene_config(const std::string& file) {
         if (!names.insert(c.name).second) b.fail("name", "body name \"" + c.name + "\" is used twice");
         std::string kind = b.one_of("kind", {"star", "planet", "moon"});
         c.kind = kind == "star" ? BodyKind::Star : kind == "planet" ? BodyKind::Planet : BodyKind::Moon;
-        c.ephemeris = b.one_of("ephemeris", {"sun", "earth", "moon"});
+        c.ephemeris = b.one_of("ephemeris", {"sun", "earth", "moon", "mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"});
         c.radius_m = b.number_in("radius_m", 1.0, 1e12);
         std::string tex = b.string("texture", "generated:" + c.name);
         if (tex.rfind("generated:", 0) == 0) {
@@ -79,6 +122,13 @@ SceneConfig load_scene_config(const std::string& file) {
         c.albedo = b.number_in("albedo", 0.0, 1.0, c.albedo);
         c.limb_darkening_u = b.number_in("limb_darkening_u", 0.0, 1.0, c.limb_darkening_u);
         c.radiance = b.number_in("radiance", 0.0, 1.0e12, c.radiance);
+        if (auto u = b.optional_dvec3("umbra_light")) {
+            if (glm::any(glm::lessThan(*u, glm::dvec3(0.0))) || glm::any(glm::greaterThan(*u, glm::dvec3(1.0))))
+                b.fail("umbra_light", "each component must lie in [0, 1] (light left in the umbra per unit sunlight)");
+            c.umbra_light = glm::vec3(*u);
+        }
+        c.umbra_brightness = b.number_in("umbra_brightness", 0.0, 1.0, c.umbra_brightness);
+        c.corona = b.number_in("corona", 0.0, 1.0e6, c.corona);
         if (auto a = b.optional_child("atmosphere")) {
             if (c.kind == BodyKind::Star) a->fail("preset", "a star cannot have an atmosphere");
             c.atmosphere = read_atmosphere(*a, c);
@@ -94,6 +144,7 @@ SceneConfig load_scene_config(const std::string& file) {
     s.stars.psf_sigma_arcmin = st.number_in("psf_sigma_arcmin", 0.01, 600.0, s.stars.psf_sigma_arcmin);
     s.stars.zero_mag_flux = st.number_in("zero_mag_flux", 0.0, 1e6, s.stars.zero_mag_flux);
     st.reject_unknown_keys();
+    if (auto sh = r.optional_child("shadows")) s.shadows = read_shadows(*sh, s);
     r.reject_unknown_keys();
     return s;
 }

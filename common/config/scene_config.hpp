@@ -2,6 +2,7 @@
 // The scene: which bodies exist, their sizes, looks and ephemeris model, and the star field.
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,31 @@ struct BodyConfig {
     double limb_darkening_u = 0.6;  // stars: linear limb-darkening coefficient
     double radiance = 1.0e3;    // stars: disc-centre radiance in scene units (planets are lit by it)
     AtmosphereConfig atmosphere;  // planets and moons
+    // As an eclipse caster: the light left deep in its umbra, per unit sunlight (rgb). A body
+    // with an atmosphere derives it from the atmosphere's grazing transmittance times
+    // umbra_brightness unless umbra_light is given; without one, umbra_light (default black).
+    std::optional<glm::vec3> umbra_light;
+    double umbra_brightness = 2.5e-4;
+    double corona = 1.0;        // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
+};
+
+// Which bodies shadow which (seed 000, section 3.3.3): in a group the parent shadows its
+// children and each child shadows the parent; children shadow each other only if the group
+// says so.
+struct ShadowGroupConfig {
+    uint16_t parent = 0;
+    std::vector<uint16_t> children;
+    bool siblings_shadow_each_other = false;
+};
+
+enum class ShadowMode : uint32_t { Exact = 0, Fast = 1, Lookup = 2, Illustrative = 3, Off = 4 };
+const std::vector<std::string>& shadow_mode_names();  // "exact", "fast", "lut", "illustrative", "off"
+ShadowMode shadow_mode_from_name(const std::string& name);  // throws std::invalid_argument
+
+struct ShadowConfig {
+    ShadowMode mode = ShadowMode::Exact;  // default; a show keyframe may switch it
+    double butterworth_order = 4.0;       // fast mode's umbra edge
+    std::vector<ShadowGroupConfig> groups;
 };
 
 struct StarFieldConfig {
@@ -45,6 +71,7 @@ struct SceneConfig {
     std::string file;
     std::vector<BodyConfig> bodies;
     StarFieldConfig stars;
+    ShadowConfig shadows;
 
     const BodyConfig* find(const std::string& name) const;
 };

@@ -18,6 +18,8 @@ namespace {
 #include "shared/star_psf.glsl"
 #include "shared/star_color.glsl"
 #include "shared/sphere_view.glsl"
+#include "shared/eclipse_shadow.glsl"
+#include "shared/eclipse_casters.glsl"
 #include "shared/atmosphere_params.glsl"
 #include "shared/atmosphere_geometry.glsl"
 #include "shared/atmosphere_lut_mapping.glsl"
@@ -25,7 +27,6 @@ namespace {
 #include "shared/atmosphere_sky.glsl"
 #include "shared/atmosphere_analytic.glsl"
 #include "shared/atmosphere_color.glsl"
-#include "shared/eclipse_shadow.glsl"
 }  // namespace
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
@@ -37,12 +38,13 @@ namespace cupola {
 inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl", "shared/eclipse_types.glsl", "shared/constants.glsl", "shared/limb_darkening.glsl",
                                                   "shared/star_psf.glsl", "shared/star_color.glsl",
                                                   "shared/sphere_view.glsl",
+                                                  "shared/eclipse_shadow.glsl",
+                                                  "shared/eclipse_casters.glsl",
                                                   "shared/atmosphere_params.glsl",
                                                   "shared/atmosphere_geometry.glsl",
                                                   "shared/atmosphere_lut_mapping.glsl",
                                                   "shared/atmosphere_tables.glsl",
                                                   "shared/atmosphere_sky.glsl",
                                                   "shared/atmosphere_analytic.glsl",
-                                                  "shared/atmosphere_color.glsl",
-                                                  "shared/eclipse_shadow.glsl"};
+                                                  "shared/atmosphere_color.glsl"};
 }  // namespace cupola

@@ -6,9 +6,12 @@
 
 // One march step: returns (in-scatter, optical depth) of the interval [t0, t1] through the
 // sample at its midpoint; energy-conserving in each step (exact for constant coefficients).
+// `light` scales the sunlight reaching the sample (eclipse shadows; 1 outside every shadow):
+// single and multiple scattering alike, i.e. the air around a shadowed sample is taken to be
+// shadowed the same way (the multiple-scattering table knows no shadows).
 AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
                                      vec2 ms_size, bool use_ms, float r, float mu, float mu_s, float nu,
-                                     float t0, float t1, vec3 throughput) {
+                                     float t0, float t1, vec3 throughput, vec3 light) {
     AtmosphereSegment s;
     float dt = t1 - t0;
     float t = 0.5 * (t0 + t1);
@@ -24,7 +27,7 @@ AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 t
     if (use_ms) {
         source = source + (a.rayleigh_scattering * dr + a.mie_scattering * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
     }
-    s.inscatter = throughput * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
+    s.inscatter = throughput * light * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
     s.transmittance = exp(-sigma_t * dt);
     return s;
 }
@@ -32,9 +35,11 @@ AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 t
 // In-scatter and transmittance along the ray from (r, mu) over [0, t_end] in `samples` steps.
 // The steps are concentrated (quadratically) toward the ray's closest approach to the planet
 // centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a share
-// of the steps proportional to its length, at least one.
+// of the steps proportional to its length, at least one. `shadow` (its casters may be none)
+// dims the sunlight at each sample; `ecl_lut` is the eclipse table for its lookup-table mode.
 AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                            bool use_ms, float r, float mu, float mu_s, float nu, float t_end, int samples) {
+                            bool use_ms, float r, float mu, float mu_s, float nu, float t_end, int samples,
+                            EclipseRay shadow, sampler2D ecl_lut) {
     AtmosphereSegment total;
     total.inscatter = vec3(0.0);
     total.transmittance = vec3(1.0);
@@ -50,7 +55,8 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
         float u = float(i) / float(n_before);
         float t_next = t_c * (1.0 - (1.0 - u) * (1.0 - u));
         AtmosphereSegment s =
-            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance);
+            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance,
+                               eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
         total.inscatter = total.inscatter + s.inscatter;
         total.transmittance = total.transmittance * s.transmittance;
         t_prev = t_next;
@@ -60,7 +66,8 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
         float u = float(i) / float(n_after);
         float t_next = t_c + (t_end - t_c) * u * u;
         AtmosphereSegment s =
-            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance);
+            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance,
+                               eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
         total.inscatter = total.inscatter + s.inscatter;
         total.transmittance = total.transmittance * s.transmittance;
         t_prev = t_next;
@@ -86,7 +93,8 @@ vec3 atm_compute_irradiance(AtmosphereParams a, sampler2D trans, vec2 trans_size
         vec3 w = atm_sphere_direction(i, 2 * directions);  // the first half has z > 0
         float nu = w.x * sin_s + w.z * mu_s;
         float len = atm_distance_to_top(a, r, w.z);
-        AtmosphereSegment s = atm_march(a, trans, trans_size, ms, ms_size, use_ms, r, w.z, mu_s, nu, len, samples);
+        AtmosphereSegment s = atm_march(a, trans, trans_size, ms, ms_size, use_ms, r, w.z, mu_s, nu, len, samples,
+                                        eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
         e = e + s.inscatter * w.z;
     }
     return e * (2.0 * CUPOLA_PI / float(directions));
@@ -103,11 +111,21 @@ float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geo
     return t_end;
 }
 
-// A whole view ray from a camera: in-scatter and transmittance over atm_view_ray_length.
+// A whole view ray from a camera: in-scatter and transmittance over atm_view_ray_length, with
+// the sunlight dimmed by the planet's eclipse shadows; shadow.origin is the ray's start (the
+// camera moved st.offset along v), relative to the planet centre, and shadow.dir = v.
+AtmosphereSegment atm_view_ray_shadowed(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                        vec2 ms_size, bool use_ms, AtmosphereRayStart st, float t_geometry,
+                                        int samples, EclipseRay shadow, sampler2D ecl_lut) {
+    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu,
+                     atm_view_ray_length(a, st, t_geometry), samples, shadow, ecl_lut);
+}
+
+// The same without shadows.
 AtmosphereSegment atm_view_ray(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
                                bool use_ms, AtmosphereRayStart st, float t_geometry, int samples) {
-    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu,
-                     atm_view_ray_length(a, st, t_geometry), samples);
+    return atm_view_ray_shadowed(a, trans, trans_size, ms, ms_size, use_ms, st, t_geometry, samples,
+                                 eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
 }
 
 // Distance from the camera to the ground along the ray, or -1 when it does not meet the ground.

@@ -24,8 +24,19 @@ struct EclipseCasters {
     int mode;                  // ECLIPSE_MODE_*
     float limb_u;              // the Sun's linear limb-darkening coefficient
     float butterworth_order;   // fast mode: sharpness n of the umbra edge
-    vec4 sun;                  // xyz: Sun centre, w: Sun radius
-    vec4 caster[ECLIPSE_MAX_CASTERS];       // xyz: caster centre, w: caster radius
+    vec3 sun_position;         // Sun centre
+    float sun_radius;
+    vec3 caster_position[ECLIPSE_MAX_CASTERS];  // caster centres
+    float caster_radius[ECLIPSE_MAX_CASTERS];
     vec3 umbra_light[ECLIPSE_MAX_CASTERS];  // light left deep in the caster's umbra per unit
                                             // sunlight (refraction through its atmosphere), rgb
+};
+
+// A straight path through a receiver's shadows (an atmosphere's view ray): the point at
+// distance t along it is origin + dir * t, relative to the receiver's centre.
+struct EclipseRay {
+    EclipseCasters casters;
+    vec2 lut_size;
+    vec3 origin;
+    vec3 dir;
 };
