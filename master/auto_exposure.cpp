@@ -17,7 +17,8 @@ struct AutoExposure::Body {
     atmosphere::ProductionAtmosphere model;
 };
 
-AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene) : cluster_(&cluster), scene_(&scene) {
+AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene)
+    : cluster_(&cluster), scene_(&scene), casting_(std::make_unique<ShadowCasting>(scene, std::map<uint16_t, glm::vec3>{})) {
     if (!cluster.output.auto_exposure.enabled) return;
     for (const auto& b : scene.bodies)
         if (b.atmosphere.present)
@@ -63,10 +64,15 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         const glm::dvec3 c_hat = to_centre / d;
         const glm::dvec3 sun_dir = glm::normalize(sun_state->position_m - snap.camera_position_m);
         const double scale = atmosphere::solar_scale(body->model, *sun, glm::length(sun_state->position_m - st->position_m));
+        // Eclipse shadows on this body, relative to its centre in world axes (what the slaves do
+        // in channel axes), so that the exposure opens up in totality.
+        const shading::EclipseCasters casters = casting_->casters_for(snap, st->id, glm::dmat3(1.0));
         for (const glm::dvec3& v : dirs) {
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
-            const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr);
+            const shading::EclipseRay shadow = shading::eclipse_ray(
+                casters, glm::vec2(1.0f), glm::vec3(-to_centre + v * static_cast<double>(start.offset)), glm::vec3(v));
+            const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr, shadow);
             sum += body->model.to_xyz(f).y * scale;
         }
     }

@@ -2,8 +2,8 @@
 // Cluster-wide automatic exposure. The master decides one exposure per frame from the state every
 // channel shares (the snapshot and the scene), so all channels tone-map identically and no seam
 // can come from exposure: the mean luminance (scene units) seen over the dome hemisphere, from the
-// production atmosphere of every body that has one (sky, lit ground, limb), evaluated on the CPU by
-// the same shared code the slaves run. A pure function of the frame: no temporal adaptation, so
+// production atmosphere of every body that has one (sky, lit ground, limb), under the frame's
+// eclipse shadows, evaluated on the CPU by the same shared code the slaves run. A pure function of the frame: no temporal adaptation, so
 // snapshots stay reproducible from the show alone.
 #include <memory>
 #include <vector>
@@ -11,6 +11,7 @@
 #include "atmosphere/production_model.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
+#include "eclipse/shadow_casters.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
@@ -30,6 +31,7 @@ private:
     const ClusterConfig* cluster_;
     const SceneConfig* scene_;
     std::vector<std::unique_ptr<Body>> bodies_;
+    std::unique_ptr<ShadowCasting> casting_;  // eclipse shadows dim the sky the exposure sees
 };
 
 }  // namespace cupola

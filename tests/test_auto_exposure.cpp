@@ -8,6 +8,9 @@
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "master_node.hpp"
+#include "eclipse/shadow_casters.hpp"
+#include "scene/eclipse_geometry.hpp"
+#include "scene/sim_time.hpp"
 #include "show_script.hpp"
 #include "support/test_support.hpp"
 
@@ -68,4 +71,25 @@ TEST(AutoExposure, IsOneDeterministicValuePerFrameInTheSnapshot) {
     f.cluster.output.exposure = 0.25;
     const AutoExposure off(f.cluster, f.scene);
     EXPECT_FLOAT_EQ(make_frame_snapshot(f.cluster, f.scene, f.show, 5, &off).settings.exposure, 0.25f);
+}
+
+// In totality the sky the exposure sees is shadowed too: the exposure opens up by orders of
+// magnitude against the same frame with shadows off, and by about 1 / visible fraction at 90 %.
+TEST(AutoExposure, OpensUpInTotality) {
+    Fixture f;
+    const EclipseEvent ev = next_solar_eclipse(utc_iso_to_j2000_seconds("2006-03-25T00:00:00Z"));
+    ShowKeyframe k;
+    k.sim_time_s = ev.peak_tt_s;
+    k.camera.anchor = f.scene.find("earth")->id;
+    k.camera.observer = ObserverSite{ev.lat_deg, ev.lon_deg, 2.0, 148.4, 0.0};
+    Snapshot snap = ShowScript({k}, 1.0).evaluate(0.0, f.scene);
+    const AutoExposure ae(f.cluster, f.scene);
+    snap.settings.flags = with_shadow_mode(0, ShadowMode::Off);
+    const double off = ae.mean_luminance(snap);
+    snap.settings.flags = with_shadow_mode(0, ShadowMode::Exact);
+    const double total = ae.mean_luminance(snap);
+    std::printf("mean luminance at greatest eclipse: shadows off %.4g, exact %.4g\n", off, total);
+    EXPECT_GT(off, 0.0);
+    EXPECT_LT(total, 1e-3 * off);
+    EXPECT_GT(ae.exposure(snap), 100.0 * f.cluster.output.auto_exposure.min_exposure);
 }

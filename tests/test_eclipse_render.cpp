@@ -160,6 +160,7 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
     const glm::dvec3 east = glm::cross(north, zenith);
     const double alt_deg = glm::degrees(std::asin(glm::dot(to_sun, zenith)));
     const double az_deg = glm::degrees(std::atan2(glm::dot(to_sun, east), glm::dot(to_sun, north)));
+    std::printf("the Sun at azimuth %.2f deg, altitude %.2f deg\n", az_deg, alt_deg);
     ASSERT_GT(alt_deg, 30.0);
 
     const std::string dir = test::scratch_dir("EclipseRender_ground");

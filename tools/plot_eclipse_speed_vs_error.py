@@ -36,7 +36,8 @@ def main() -> int:
     for r in modes:
         x = num(r, "ns_per_pixel")
         if r["name"] == "illustrative":
-            ax.axvline(x, color="tab:purple", ls="--", lw=1, label=f"illustrative ({x:.1f} ns/px, no numeric error)")
+            cost = "~0" if abs(x) < 0.5 else f"{x:.1f}"
+            ax.axvline(x, color="tab:purple", ls="--", lw=1, label=f"illustrative ({cost} ns/px, no numeric error)")
             continue
         if r["name"] not in colors:
             continue

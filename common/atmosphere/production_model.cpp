@@ -94,6 +94,14 @@ ProductionAtmosphere::ProductionAtmosphere(AtmosphereParameters params, Producti
 }
 
 vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance) const {
+    return radiance(st, t_geometry, transmittance, eclipse_ray(eclipse_no_casters(), vec2(1.0f), vec3(0.0f), vec3(0.0f)));
+}
+
+vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance,
+                                    EclipseRay shadow) const {
+    if (shadow.casters.mode == ECLIPSE_MODE_LUT || shadow.casters.mode == ECLIPSE_MODE_ILLUSTRATIVE)
+        shadow.casters.mode = ECLIPSE_MODE_EXACT;
+    const sampler2D no_lut{&tables_.transmittance};  // never sampled in exact or fast mode
     const AtmosphereParams& a = gpu_;
     const sampler2D trans{&tables_.transmittance}, ms{&tables_.multiple_scattering}, irr{&tables_.irradiance};
     const vec2 ts(tables_.transmittance.width, tables_.transmittance.height);
@@ -101,10 +109,14 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
     const vec2 es(tables_.irradiance.width, tables_.irradiance.height);
     const bool ground = st.valid && atm_ray_hits_ground(a, st.r, st.mu);
     const bool geometry_first = t_geometry >= 0.0f && (!ground || t_geometry < atm_ground_distance(a, st));
-    const AtmosphereSegment seg =
-        quality_.analytic
-            ? atm_analytic_view_ray(a, fit_, st, t_geometry)
-            : atm_view_ray(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry, quality_.view_samples);
+    AtmosphereSegment seg;
+    if (quality_.analytic) {
+        seg = atm_analytic_view_ray(a, fit_, st, t_geometry);
+        seg.inscatter = seg.inscatter * eclipse_light_along(shadow, no_lut, 0.5f * atm_view_ray_length(a, st, t_geometry));
+    } else {
+        seg = atm_view_ray_shadowed(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry,
+                                    quality_.view_samples, shadow, no_lut);
+    }
     vec3 out = seg.inscatter;
     if (ground && !geometry_first) {
         vec3 surface;
@@ -115,7 +127,8 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
         } else {
             surface = atm_ground_radiance(a, trans, ts, irr, es, st, a.ground_albedo);
         }
-        out = out + seg.transmittance * surface;
+        out = out + seg.transmittance * surface *
+                        eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r, st.mu));
     }
     if (transmittance) *transmittance = seg.transmittance;
     return out;

@@ -58,6 +58,10 @@ public:
     // Per unit solar irradiance at the sample wavelengths, for a ray in the shared code's terms;
     // t_geometry < 0: no scene geometry. Adds the lit ground when the ray ends on it.
     glm::vec3 radiance(const shading::AtmosphereRayStart& start, float t_geometry, glm::vec3* transmittance) const;
+    // The same under eclipse shadows: `shadow` as atm_view_ray_shadowed takes it (its casters in
+    // exact or fast mode; the lookup table is not available here and counts as exact).
+    glm::vec3 radiance(const shading::AtmosphereRayStart& start, float t_geometry, glm::vec3* transmittance,
+                       shading::EclipseRay shadow) const;
 
 private:
     AtmosphereParameters params_;
