@@ -342,12 +342,17 @@ TEST(Stitch, RunDirectoryReportsDisagreeingHashesAndMissingFrames) {
 
     // The domemaster's metadata and content.
     FrameMetadata m;
-    const Image dome = read_image(out + "/" + frame_file_name(1, "exr"), &m);
+    const Image dome = read_image_radiance(out + "/" + frame_file_name(1, "exr"), &m);
     EXPECT_EQ(m.channel_id, -1);
     EXPECT_EQ(m.channel_name, "dome");
     EXPECT_EQ(m.frame, 1u);
     EXPECT_EQ(m.snapshot_hash, "00000000000000a1");
     EXPECT_EQ(m.sim_time_s, 1000.0 + 1 / 30.0);
+    // The domemaster keeps the frame's own exposure (auto exposure changes it per frame).
+    EXPECT_EQ(m.exposure, 0.5);
+    FrameMetadata m2;
+    read_image(out + "/" + frame_file_name(2, "exr"), &m2);
+    EXPECT_EQ(m2.exposure, 2.0);
     ASSERT_EQ(dome.width, 96);
     ASSERT_EQ(dome.height, 96);
     const Image expected =

@@ -289,7 +289,10 @@ StitchReport stitch_run_directory(const ClusterConfig& config, const std::string
         out_meta.sim_time_s = metas.front().sim_time_s;
         out_meta.snapshot_hash = metas.front().snapshot_hash;
         out_meta.renderer = metas.front().renderer;
-        const auto written = write_frame(out_dir, dome, out_meta, formats, config.output.exposure);
+        // The frame's own exposure (the master's auto exposure varies it per frame; all channels
+        // share it), else the configured one.
+        const double exposure = metas.front().exposure > 0.0 ? metas.front().exposure : config.output.exposure;
+        const auto written = write_frame(out_dir, dome, out_meta, formats, exposure);
         report.written.insert(report.written.end(), written.begin(), written.end());
         report.frames.push_back(frame);
     }
