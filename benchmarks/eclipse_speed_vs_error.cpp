@@ -33,6 +33,8 @@
 #include "gl_api.hpp"
 #include "gl_buffer.hpp"
 #include "gl_framebuffer.hpp"
+#include <memory>
+
 #include "gl_program.hpp"
 #include "gl_texture.hpp"
 #include "shading/shared_shading.hpp"
@@ -57,39 +59,10 @@ struct Stats {
     double mean() const { return n ? sum / n : 0.0; }
 };
 
-// A program from the embedded test shaders with `uniform int u_mode;` turned into a constant.
-GLuint build_program(int mode) {
-    auto compile = [](GLenum stage, std::string text) {
-        const GLuint s = glCreateShader(stage);
-        const char* src = text.c_str();
-        glShaderSource(s, 1, &src, nullptr);
-        glCompileShader(s);
-        GLint ok = 0;
-        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            char log[4096];
-            glGetShaderInfoLog(s, sizeof log, nullptr, log);
-            throw std::runtime_error(std::string("eclipse_eval: compile failed: ") + log);
-        }
-        return s;
-    };
-    std::string frag = GlProgram::assemble("tests/eclipse_eval.frag");
-    const std::string decl = "uniform int u_mode;";
-    const auto at = frag.find(decl);
-    if (at == std::string::npos) throw std::runtime_error("tests/eclipse_eval.frag: no `" + decl + "` line");
-    frag.replace(at, decl.size(), "const int u_mode = " + std::to_string(mode) + ";");
-    const GLuint vs = compile(GL_VERTEX_SHADER, GlProgram::assemble("tests/fullscreen.vert"));
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, frag);
-    const GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) throw std::runtime_error("eclipse_eval: link failed");
-    return p;
+// A program holding one mode's code only (ECLIPSE_EVAL_MODE; -1: every mode, for the errors).
+std::unique_ptr<GlProgram> build_program(int mode) {
+    return std::make_unique<GlProgram>("tests/fullscreen.vert", "tests/eclipse_eval.frag",
+                                       "#define ECLIPSE_EVAL_MODE " + std::to_string(mode) + "\n");
 }
 
 void set_uniforms(GLuint p, const glm::vec2& lut_size, float limb_u, float order) {
@@ -195,9 +168,11 @@ int main(int argc, char** argv) {
                                {"fast", sh::ECLIPSE_MODE_FAST},
                                {"lut", sh::ECLIPSE_MODE_LUT},
                                {"illustrative", sh::ECLIPSE_MODE_ILLUSTRATIVE}};
+    std::vector<std::unique_ptr<GlProgram>> owned;
     std::vector<GLuint> programs;
     for (auto& m : modes) {
-        programs.push_back(build_program(m.id));
+        owned.push_back(build_program(m.id));
+        programs.push_back(owned.back()->id());
         set_uniforms(programs.back(), lut_size, u, n_order);
     }
     const std::vector<Timing> ms = frame_ms(programs, reps);
@@ -205,7 +180,6 @@ int main(int argc, char** argv) {
         modes[k].ms = ms[k].median;
         modes[k].p25 = ms[k].p25;
         modes[k].p75 = ms[k].p75;
-        glDeleteProgram(programs[k]);
     }
     gl::check("timed passes");
     const double base_ms = modes[0].ms;
@@ -230,11 +204,10 @@ int main(int argc, char** argv) {
     efb.bind();
     eparam_tex.bind(0);
     lut_tex.bind(1);
-    const GLuint all = build_program(-1);
-    set_uniforms(all, lut_size, u, n_order);
+    const auto all = build_program(-1);
+    set_uniforms(all->id(), lut_size, u, n_order);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     const Image img = efb.read();  // row 0 = top = texture row eh - 1
-    glDeleteProgram(all);
     Stats err[3][2];  // exact, fast, lut x Sun-Moon, Earth-Moon
     for (size_t i = 0; i < samples.size(); ++i) {
         const int x = static_cast<int>(i % ew), y = static_cast<int>(i / ew);

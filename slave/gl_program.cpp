@@ -20,8 +20,8 @@ std::string info_log(GLuint obj, bool program) {
     return std::string(buf.data());
 }
 
-GLuint compile(GLenum stage, const std::string& name) {
-    const std::string text = GlProgram::assemble(name);
+GLuint compile(GLenum stage, const std::string& name, const std::string& prelude) {
+    const std::string text = GlProgram::assemble(name, prelude);
     const GLuint s = glCreateShader(stage);
     const char* src = text.c_str();
     glShaderSource(s, 1, &src, nullptr);
@@ -39,12 +39,12 @@ GLuint compile(GLenum stage, const std::string& name) {
 
 }  // namespace
 
-std::string GlProgram::assemble(const std::string& shader_name) {
+std::string GlProgram::assemble(const std::string& shader_name, const std::string& prelude) {
     const std::string& src = shader_source(shader_name);
     const auto eol = src.find('\n');
     if (src.rfind("#version", 0) != 0 || eol == std::string::npos)
         throw std::runtime_error("shader \"" + shader_name + "\" must start with a #version line");
-    std::string out = src.substr(0, eol + 1);
+    std::string out = src.substr(0, eol + 1) + prelude;
     out += "#line 1 0\n";
     for (const char* f : kSharedShadingFiles) out += shader_source(f) + "\n";
     out += "#line 2 1\n";
@@ -52,11 +52,11 @@ std::string GlProgram::assemble(const std::string& shader_name) {
     return out;
 }
 
-GlProgram::GlProgram(const std::string& vertex, const std::string& fragment) {
-    const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
+GlProgram::GlProgram(const std::string& vertex, const std::string& fragment, const std::string& fragment_prelude) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex, "");
     GLuint fs = 0;
     try {
-        fs = compile(GL_FRAGMENT_SHADER, fragment);
+        fs = compile(GL_FRAGMENT_SHADER, fragment, fragment_prelude);
     } catch (...) {
         glDeleteShader(vs);
         throw;

@@ -11,9 +11,11 @@ namespace cupola {
 
 class GlProgram {
 public:
-    // vertex/fragment: embedded shader names, e.g. "stars.vert". Throws std::runtime_error naming
-    // the shader and quoting the driver's info log when a stage fails to compile or link.
-    GlProgram(const std::string& vertex, const std::string& fragment);
+    // vertex/fragment: embedded shader names, e.g. "stars.vert". fragment_prelude: lines put right
+    // after the fragment shader's #version (e.g. a #define choosing a variant). Throws
+    // std::runtime_error naming the shader and quoting the driver's info log when a stage fails
+    // to compile or link.
+    GlProgram(const std::string& vertex, const std::string& fragment, const std::string& fragment_prelude = "");
     ~GlProgram();
     GlProgram(const GlProgram&) = delete;
     GlProgram& operator=(const GlProgram&) = delete;
@@ -32,7 +34,7 @@ public:
     void set(const char* name, const glm::vec3* v, int count) const;
 
     // The text handed to the driver for one stage (the shader plus the shared files).
-    static std::string assemble(const std::string& shader_name);
+    static std::string assemble(const std::string& shader_name, const std::string& prelude = "");
 
 private:
     GLint loc(const char* name) const { return glGetUniformLocation(id_, name); }

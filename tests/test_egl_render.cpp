@@ -192,10 +192,8 @@ TEST(EglRender, StarEnergyIsTheSameInChannelsOfDifferentResolutionAndFov) {
     EXPECT_NEAR(energy[0] / energy[1], 1.0, 0.03);
 }
 
-TEST(EglRender, SunDiscHasItsAngularSizeAndLimbDarkening) {
-    context();
-    OneStarScene s(0.0, -89.0, 6.0, "sun");
-    s.scene.stars.magnitude_limit = -5.0;  // no stars
+// The Sun of these tests: body 0, radiance 5.8e4 (a white Lambert surface at 1 AU reads 1).
+BodyConfig unit_sun(double corona) {
     BodyConfig sun;
     sun.id = 0;
     sun.name = "Sun";
@@ -203,7 +201,15 @@ TEST(EglRender, SunDiscHasItsAngularSizeAndLimbDarkening) {
     sun.radius_m = 6.957e8;
     sun.radiance = 5.8e4;
     sun.limb_darkening_u = 0.6;
-    sun.corona = 0.0;  // the disc alone (the corona has its own test)
+    sun.corona = corona;
+    return sun;
+}
+
+TEST(EglRender, SunDiscHasItsAngularSizeAndLimbDarkening) {
+    context();
+    OneStarScene s(0.0, -89.0, 6.0, "sun");
+    s.scene.stars.magnitude_limit = -5.0;  // no stars
+    const BodyConfig sun = unit_sun(0.0);  // the disc alone (the corona has its own test)
     s.scene.bodies = {sun};
     ClusterConfig cluster;
     const ChannelConfig ch = channel(128, 128, {}, FovDeg{1, 1, 1, 1});  // 2 degrees wide
@@ -235,14 +241,7 @@ TEST(EglRender, SunCoronaFollowsBaumbachsProfile) {
     context();
     OneStarScene s(0.0, -89.0, 6.0, "corona");
     s.scene.stars.magnitude_limit = -5.0;
-    BodyConfig sun;
-    sun.id = 0;
-    sun.name = "Sun";
-    sun.kind = BodyKind::Star;
-    sun.radius_m = 6.957e8;
-    sun.radiance = 5.8e4;
-    sun.limb_darkening_u = 0.6;
-    sun.corona = 1.0;
+    const BodyConfig sun = unit_sun(1.0);
     s.scene.bodies = {sun};
     ClusterConfig cluster;
     const ChannelConfig ch = channel(256, 256, {}, FovDeg{2, 2, 2, 2});
@@ -274,13 +273,7 @@ TEST(EglRender, WhiteLambertBodyAtOneAuIsAboutOne) {
     context();
     OneStarScene s(0.0, -89.0, 6.0, "lambert");
     s.scene.stars.magnitude_limit = -5.0;
-    BodyConfig sun;
-    sun.id = 0;
-    sun.name = "Sun";
-    sun.kind = BodyKind::Star;
-    sun.radius_m = 6.957e8;
-    sun.radiance = 5.8e4;
-    sun.limb_darkening_u = 0.6;
+    const BodyConfig sun = unit_sun(1.0);
     BodyConfig ball;
     ball.id = 1;
     ball.name = "Ball";

@@ -9,9 +9,13 @@ uniform vec2 u_lut_size;
 uniform float u_limb_u;
 uniform float u_order;  // fast mode: Butterworth order n
 // -1: exact, fast, lut and region into rgba; ECLIPSE_MODE_* (0..3): that mode alone (illustrative:
-// the region's tint); 4: none (the inputs only: the benchmark's baseline). The benchmark turns
-// the next line into a constant, so each of its programs holds one mode's code only.
+// the region's tint); 4: none (the inputs only: the benchmark's baseline). The benchmark defines
+// ECLIPSE_EVAL_MODE instead, so each of its programs holds one mode's code only.
+#ifdef ECLIPSE_EVAL_MODE
+const int u_mode = ECLIPSE_EVAL_MODE;
+#else
 uniform int u_mode;
+#endif
 out vec4 frag_color;
 
 void main() {
