@@ -2,6 +2,7 @@
 // Small helpers shared by the tests: scratch folders, repository paths, writing files. Linking
 // them also sets CUPOLA_CACHE_DIR to <build>/test-tmp/atmosphere-cache for the whole process.
 #include <string>
+#include <utility>
 
 namespace cupola::test {
 
@@ -16,5 +17,8 @@ std::string bin_path(const std::string& program);
 
 void write_text(const std::string& path, const std::string& text);
 std::string read_text(const std::string& path);
+
+// Runs a shell command line; returns (exit status, or -1 if it did not exit normally; stdout).
+std::pair<int, std::string> run_shell(const std::string& command);
 
 }  // namespace cupola::test
