@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "util/cli_parse.hpp"
 #include "atmosphere/production_model.hpp"
 #include "atmosphere/reference_integrator.hpp"
 #include "config/scene_config.hpp"
@@ -77,14 +78,7 @@ int main(int argc, char** argv) {
     app.add_option("--cache-dir", cache_dir, "atmosphere table cache directory");
     app.add_option("query", query, "altitude_m view_zenith_deg sun_zenith_deg relative_azimuth_deg")->expected(0, 4);
     app.add_flag("-v,--verbose", verbose, "log table building");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "cupola-atmosphere: " << e.what() << "\nrun with --help for usage\n";
-        return 2;
-    }
+    if (const auto stop = cupola::parse_command_line(app, argc, argv, "cupola-atmosphere")) return *stop;
     return cupola::run_main("cupola-atmosphere", [&]() -> int {
         cupola::setup_logging("cupola-atmosphere", verbose, !verbose);
         const cupola::SceneConfig scene = cupola::load_scene_config(scene_file);

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "util/cli_parse.hpp"
 #include "scene/eclipse_geometry.hpp"
 #include "scene/sim_time.hpp"
 #include "scene/sky_positions.hpp"
@@ -71,14 +72,7 @@ int main(int argc, char** argv) {
                  "; TIME is ISO 8601 UTC. Without a query on the command line, one query per stdin line."};
     std::vector<std::string> query;
     app.add_option("query", query, "one query, e.g. position moon 2024-04-08T18:17:00Z");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "cupola-sky: " << e.what() << "\nrun with --help for usage\n";
-        return 2;
-    }
+    if (const auto stop = cupola::parse_command_line(app, argc, argv, "cupola-sky")) return *stop;
     return cupola::run_main("cupola-sky", [&]() -> int {
         cupola::setup_logging("cupola-sky", false, true);
         if (!query.empty()) {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "util/cli_parse.hpp"
 #include "config/cluster_config.hpp"
 #include "config/config_error.hpp"
 #include "dome/domemaster_stitcher.hpp"
@@ -26,16 +27,7 @@ int main(int argc, char** argv) {
     app.add_option("--frame", frame, "stitch only this frame index");
     app.add_option("--size", size, "domemaster size in pixels (default: the config's output.domemaster_size)")
         ->check(CLI::Range(1, 32768));
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "cupola-stitch: " << e.what() << "\n" << "run with --help for usage\n";
-        return 2;
-    }
+    if (const auto stop = cupola::parse_command_line(app, argc, argv, "cupola-stitch")) return *stop;
 
     cupola::ClusterConfig config;
     try {
