@@ -50,21 +50,17 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
     if (t_c < t_end && n_before == samples) n_before = samples - 1;
     int n_after = samples - n_before;
     float t_prev = 0.0;
-    // Before t_c: t(u) = t_c (1 - (1 - u)^2), dense toward t_c.
-    for (int i = 1; i <= n_before; ++i) {
-        float u = float(i) / float(n_before);
-        float t_next = t_c * (1.0 - (1.0 - u) * (1.0 - u));
-        AtmosphereSegment s =
-            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance,
-                               eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
-        total.inscatter = total.inscatter + s.inscatter;
-        total.transmittance = total.transmittance * s.transmittance;
-        t_prev = t_next;
-    }
-    // After t_c: t(u) = t_c + (t_end - t_c) u^2, dense toward t_c.
-    for (int i = 1; i <= n_after; ++i) {
-        float u = float(i) / float(n_after);
-        float t_next = t_c + (t_end - t_c) * u * u;
+    // Before t_c: t(u) = t_c (1 - (1 - u)^2); after: t(u) = t_c + (t_end - t_c) u^2; both dense
+    // toward t_c.
+    for (int i = 1; i <= samples; ++i) {
+        float t_next;
+        if (i <= n_before) {
+            float u = float(i) / float(n_before);
+            t_next = t_c * (1.0 - (1.0 - u) * (1.0 - u));
+        } else {
+            float u = float(i - n_before) / float(n_after);
+            t_next = t_c + (t_end - t_c) * u * u;
+        }
         AtmosphereSegment s =
             atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance,
                                eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
