@@ -119,6 +119,31 @@ nlohmann::json keyframe(double at_s, double t_tt, const nlohmann::json& camera, 
     return {{"at_s", at_s}, {"time_utc", utc_of(t_tt)}, {"camera", camera}, {"shadow_mode", mode}};
 }
 
+// One channel of a test cluster: square, `half_fov_deg` each way, pitched up from the camera's
+// forward direction.
+nlohmann::json test_channel(int id, const std::string& name, double pitch_deg, int port, double half_fov_deg) {
+    return {{"id", id},
+            {"name", name},
+            {"orientation", {{"pitch_deg", pitch_deg}}},
+            {"unicast_address", "127.0.0.1:" + std::to_string(port)},
+            {"fov", {{"left_deg", half_fov_deg}, {"right_deg", half_fov_deg}, {"up_deg", half_fov_deg},
+                     {"down_deg", half_fov_deg}}}};
+}
+
+// A unicast loopback cluster on the physical scene with the show in `dir`, n x n channels,
+// EXR + PNG frames at a fixed exposure (run_loopback adds the key and the timeouts).
+nlohmann::json test_cluster(int id, const std::string& dir, int report_port, int n, int dome_size, double exposure,
+                            const nlohmann::json& channels) {
+    return {{"cluster_id", id},
+            {"scene", test::source_path("configs/scenes/earth-physical.json")},
+            {"show", dir + "/show.json"},
+            {"network", {{"transport", "unicast"}, {"master_address", "127.0.0.1"}, {"report_port", report_port}}},
+            {"dome", {{"fov_deg", 180}, {"tilt_deg", 0}, {"require_full_coverage", false}}},
+            {"output",
+             {{"width", n}, {"height", n}, {"formats", {"exr", "png"}}, {"domemaster_size", dome_size}, {"exposure", exposure}}},
+            {"channels", channels}};
+}
+
 const SceneConfig& physical_scene() {
     static const SceneConfig s = load_scene_config(test::source_path("configs/scenes/earth-physical.json"));
     return s;
@@ -174,20 +199,10 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
     test::write_text(dir + "/show.json", show.dump(2));
     const int n = 64;
     const double sun_half_fov = 4.0;
-    nlohmann::json cluster = {
-        {"cluster_id", 4301},
-        {"scene", test::source_path("configs/scenes/earth-physical.json")},
-        {"show", dir + "/show.json"},
-        {"network", {{"transport", "unicast"}, {"master_address", "127.0.0.1"}, {"report_port", 47901}}},
-        {"dome", {{"fov_deg", 180}, {"tilt_deg", 0}, {"require_full_coverage", false}}},
-        {"output", {{"width", n}, {"height", n}, {"formats", {"exr", "png"}}, {"domemaster_size", 128}, {"exposure", 1e-4}}},
-        {"channels",
-         {{{"id", 0}, {"name", "sky"}, {"orientation", {{"pitch_deg", 90}}}, {"unicast_address", "127.0.0.1:47900"},
-           {"fov", {{"left_deg", 60}, {"right_deg", 60}, {"up_deg", 60}, {"down_deg", 60}}}},
-          {{"id", 1}, {"name", "sun"}, {"orientation", {{"pitch_deg", alt_deg}}}, {"unicast_address", "127.0.0.1:47902"},
-           {"fov",
-            {{"left_deg", sun_half_fov}, {"right_deg", sun_half_fov}, {"up_deg", sun_half_fov},
-             {"down_deg", sun_half_fov}}}}}}};
+    const nlohmann::json cluster =
+        test_cluster(4301, dir, 47901, n, 128, 1e-4,
+                     nlohmann::json::array({test_channel(0, "sky", 90.0, 47900, 60.0),
+                                            test_channel(1, "sun", alt_deg, 47902, sun_half_fov)}));
     const std::string out = run_loopback(dir, cluster, 3);
     for (int f = 0; f < 3; ++f) EXPECT_TRUE(std::filesystem::exists(out + "/dome/" + frame_file_name(f, "png")));
 
@@ -287,16 +302,8 @@ TEST(EclipseRender, FromSpaceTheUmbraDarkensTheEarthAndIllustrativeModeShowsTheW
                                   {keyframe(0, t, camera, "off"), keyframe(1, t + 1e-3, camera, "exact"),
                                    keyframe(2, t + 2e-3, camera, "illustrative")}}};
     test::write_text(dir + "/show.json", show.dump(2));
-    nlohmann::json cluster = {
-        {"cluster_id", 4302},
-        {"scene", test::source_path("configs/scenes/earth-physical.json")},
-        {"show", dir + "/show.json"},
-        {"network", {{"transport", "unicast"}, {"master_address", "127.0.0.1"}, {"report_port", 47906}}},
-        {"dome", {{"fov_deg", 180}, {"tilt_deg", 0}, {"require_full_coverage", false}}},
-        {"output", {{"width", n}, {"height", n}, {"formats", {"exr", "png"}}, {"domemaster_size", 128}, {"exposure", 1e-4}}},
-        {"channels",
-         {{{"id", 0}, {"name", "earth"}, {"orientation", {{"pitch_deg", 0}}}, {"unicast_address", "127.0.0.1:47905"},
-           {"fov", {{"left_deg", half_fov}, {"right_deg", half_fov}, {"up_deg", half_fov}, {"down_deg", half_fov}}}}}}};
+    const nlohmann::json cluster =
+        test_cluster(4302, dir, 47906, n, 128, 1e-4, nlohmann::json::array({test_channel(0, "earth", 0.0, 47905, half_fov)}));
     const std::string out = run_loopback(dir, cluster, 3);
     const Image off = read_frame(out + "/earth", 0), exact = read_frame(out + "/earth", 1),
                 ill = read_frame(out + "/earth", 2);
@@ -377,16 +384,8 @@ TEST(EclipseRender, TheMoonTurnsDarkAndRedInATotalLunarEclipse) {
         {"keyframes", {keyframe(0, ev.peak_tt_s, camera, "off"), keyframe(1, ev.peak_tt_s + 1e-3, camera, "exact")}}};
     test::write_text(dir + "/show.json", show.dump(2));
     const int n = 48;
-    nlohmann::json cluster = {
-        {"cluster_id", 4303},
-        {"scene", test::source_path("configs/scenes/earth-physical.json")},
-        {"show", dir + "/show.json"},
-        {"network", {{"transport", "unicast"}, {"master_address", "127.0.0.1"}, {"report_port", 47911}}},
-        {"dome", {{"fov_deg", 180}, {"tilt_deg", 0}, {"require_full_coverage", false}}},
-        {"output", {{"width", n}, {"height", n}, {"formats", {"exr", "png"}}, {"domemaster_size", 64}, {"exposure", 1.0}}},
-        {"channels",
-         {{{"id", 0}, {"name", "moon"}, {"orientation", {{"pitch_deg", 0}}}, {"unicast_address", "127.0.0.1:47910"},
-           {"fov", {{"left_deg", 0.5}, {"right_deg", 0.5}, {"up_deg", 0.5}, {"down_deg", 0.5}}}}}}};
+    const nlohmann::json cluster =
+        test_cluster(4303, dir, 47911, n, 64, 1.0, nlohmann::json::array({test_channel(0, "moon", 0.0, 47910, 0.5)}));
     const std::string out = run_loopback(dir, cluster, 2);
     const Image off = read_frame(out + "/moon", 0), ecl = read_frame(out + "/moon", 1);
     double sum_off[3] = {}, sum_ecl[3] = {};
