@@ -12,19 +12,14 @@ namespace {
 constexpr int kGrid = 8;  // rays per channel side
 }  // namespace
 
-struct AutoExposure::Body {
-    const BodyConfig* config;
-    atmosphere::ProductionAtmosphere model;
-};
-
-AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene)
-    : cluster_(&cluster), scene_(&scene), casting_(std::make_unique<ShadowCasting>(scene, std::map<uint16_t, glm::vec3>{})) {
-    if (!cluster.output.auto_exposure.enabled) return;
-    for (const auto& b : scene.bodies)
-        if (b.atmosphere.present)
-            bodies_.push_back(std::make_unique<Body>(
-                Body{&b, atmosphere::ProductionAtmosphere(b.atmosphere.parameters,
-                                                          atmosphere::production_quality(b.atmosphere.model))}));
+AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres)
+    : cluster_(&cluster),
+      scene_(&scene),
+      atmospheres_(atmospheres),
+      casting_(std::make_unique<ShadowCasting>(scene, std::map<uint16_t, glm::vec3>{})) {
+    if (!cluster.output.auto_exposure.enabled || atmospheres_) return;
+    own_atmospheres_ = std::make_unique<SceneAtmospheres>(scene);
+    atmospheres_ = own_atmospheres_.get();
 }
 
 AutoExposure::~AutoExposure() = default;
@@ -38,7 +33,7 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
             sun = &scene_->bodies[st.id];
             break;
         }
-    if (!sun || bodies_.empty()) return 0.0;
+    if (!sun || !atmospheres_ || atmospheres_->empty()) return 0.0;
     // Directions: an 8 x 8 grid of pixel-centre rays through every channel's frustum -- exactly
     // what the cluster renders, known to the master from the cluster config.
     std::vector<glm::dvec3> dirs;
@@ -54,7 +49,7 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
             }
     }
     double sum = 0.0;
-    for (const auto& body : bodies_) {
+    for (const auto& body : atmospheres_->bodies()) {
         const BodyState* st = nullptr;
         for (const auto& s : snap.bodies)
             if (s.id == body->config->id) st = &s;

@@ -12,13 +12,16 @@
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "eclipse/shadow_casters.hpp"
+#include "scene_atmospheres.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
 
 class AutoExposure {
 public:
-    AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene);
+    // atmospheres: the master's shared models (not owned; must outlive this), or nullptr to
+    // build its own when auto exposure is enabled.
+    AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres = nullptr);
     ~AutoExposure();
 
     // Mean luminance (scene units) over the channels' ray grid.
@@ -27,10 +30,10 @@ public:
     double exposure(const Snapshot& snap) const;
 
 private:
-    struct Body;
     const ClusterConfig* cluster_;
     const SceneConfig* scene_;
-    std::vector<std::unique_ptr<Body>> bodies_;
+    std::unique_ptr<SceneAtmospheres> own_atmospheres_;
+    const SceneAtmospheres* atmospheres_ = nullptr;
     std::unique_ptr<ShadowCasting> casting_;  // eclipse shadows dim the sky the exposure sees
 };
 

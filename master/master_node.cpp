@@ -22,17 +22,27 @@ MasterNode::MasterNode(ClusterConfig cluster, MasterOptions options)
     : cluster_(std::move(cluster)),
       scene_(load_scene_config(cluster_.scene_file)),
       show_(ShowScript::load(cluster_.show_file, scene_)),
-      options_(std::move(options)),
-      auto_exposure_(std::make_unique<AutoExposure>(cluster_, scene_)) {}
+      options_(std::move(options)) {
+    if (cluster_.output.auto_exposure.enabled || scene_.glare.enabled)
+        atmospheres_ = std::make_unique<SceneAtmospheres>(scene_);
+    auto_exposure_ = std::make_unique<AutoExposure>(cluster_, scene_, atmospheres_.get());
+    if (scene_.glare.enabled) glare_sources_ = std::make_unique<GlareSources>(scene_, atmospheres_.get());
+}
 
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
-                             uint64_t frame, const AutoExposure* auto_exposure) {
+                             uint64_t frame, const AutoExposure* auto_exposure, const GlareSources* glare) {
     const double dt = cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
-    Snapshot snap = show.evaluate(static_cast<double>(frame) * dt, scene);
+    const double show_time_s = static_cast<double>(frame) * dt;
+    Snapshot snap = show.evaluate(show_time_s, scene);
     snap.frame = frame;
     snap.settings.exposure = static_cast<float>(
         auto_exposure && cluster.output.auto_exposure.enabled ? auto_exposure->exposure(snap) : cluster.output.exposure);
     snap.settings.star_magnitude_limit = static_cast<float>(scene.stars.magnitude_limit);
+    if (glare && scene.glare.enabled) {
+        // The phase wraps well before float loses the fractions that animate the rays.
+        snap.settings.glare_phase = static_cast<float>(std::fmod(show_time_s * scene.glare.animation_rate, 4096.0));
+        snap.glare = glare->select(snap);
+    }
     return snap;
 }
 
@@ -128,11 +138,14 @@ int MasterNode::run() {
             spdlog::warn("master: starting with {} of {} channels; the others may join later", barrier.live_count(), ids.size());
     }
 
+    GlareSharing glare_sharing(cluster_);
+    std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility
     const auto run_start = Clock::now();
     uint64_t frames_done = 0;
     uint64_t frames_incomplete = 0;
     for (uint64_t frame = 0; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
-        const Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame, auto_exposure_.get());
+        Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame, auto_exposure_.get(), glare_sources_.get());
+        if (frame > 0) glare_sharing.apply(snap, previous_reports, frame - 1);
         const std::vector<uint8_t> payload = encode_snapshot(snap);
         const std::string hash = snapshot_hash(payload);
 
@@ -182,11 +195,20 @@ int MasterNode::run() {
             if (rep.snapshot_hash != hash) hashes_agree = false;
         }
         if (!hashes_agree) spdlog::error("master: frame {}: a channel reports another snapshot hash", frame);
+        nlohmann::json glare = nlohmann::json::array();
+        for (const auto& g : snap.glare)
+            glare.push_back({{"body", g.body},
+                             {"star", g.star},
+                             {"visible_fraction", g.visible_fraction},
+                             {"origin", g.origin == GlareOrigin::Measured ? "measured" : "analytic"},
+                             {"measured_frame", g.measured_frame},
+                             {"offset", {g.centroid_offset.x, g.centroid_offset.y, g.centroid_offset.z}}});
+        previous_reports = std::move(reports);
         const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
         events.write({{"event", "frame"}, {"frame", frame}, {"hash", hash}, {"sim_time_s", snap.sim_time_s},
-                      {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}});
+                      {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}, {"glare", glare}});
         ++frames_done;
-        if (static_cast<int>(reports.size()) < static_cast<int>(ids.size())) ++frames_incomplete;
+        if (static_cast<int>(previous_reports.size()) < static_cast<int>(ids.size())) ++frames_incomplete;
 
         if (cluster_.frame_rate_hz > 0) {
             const auto next = run_start + std::chrono::duration_cast<Clock::duration>(
@@ -209,6 +231,10 @@ int MasterNode::run() {
     const double secs = std::chrono::duration<double>(Clock::now() - run_start).count();
     spdlog::info("master: {} frames in {:.2f} s ({:.2f} frames/s), {} with missing channels; wire: {}", frames_done,
                  secs, frames_done / std::max(secs, 1e-9), frames_incomplete, wire.counters().summary());
+    if (glare_sources_)
+        spdlog::info("master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "
+                     "report)",
+                     glare_sharing.counts().measured, glare_sharing.counts().analytic, glare_sharing.counts().missing);
     events.write({{"event", "end"}, {"frames", frames_done}, {"seconds", secs},
                   {"rejected", wire.counters().total_rejected()}, {"wire", wire.counters().summary()}});
     return 0;

@@ -11,6 +11,9 @@
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "auto_exposure.hpp"
+#include "glare_sharing.hpp"
+#include "glare_sources.hpp"
+#include "scene_atmospheres.hpp"
 #include "show_script.hpp"
 
 namespace cupola {
@@ -20,11 +23,15 @@ struct MasterOptions {
     std::string events_file;         // JSON lines: one object per frame and per channel event
 };
 
-// The snapshot the master broadcasts for a frame: deterministic in the frame index, so any
-// process (a test, a replay tool) can recompute it and check a frame file's hash. With
-// output.auto_exposure enabled, pass the AutoExposure built for the same cluster and scene.
+// The snapshot for a frame as the show alone defines it: deterministic in the frame index, so
+// any process (a test, a replay tool) can recompute it. With output.auto_exposure enabled, pass
+// the AutoExposure built for the same cluster and scene; with glare, the GlareSources (the
+// sources then carry their analytic visibility). The master broadcasts exactly this for frame 0;
+// from frame 1 on it replaces the glare visibility by the cluster's measurement of the previous
+// frame where it has one (GlareSharing), so later hashes also depend on the channels' reports.
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
-                             uint64_t frame, const AutoExposure* auto_exposure = nullptr);
+                             uint64_t frame, const AutoExposure* auto_exposure = nullptr,
+                             const GlareSources* glare = nullptr);
 
 class MasterNode {
 public:
@@ -39,7 +46,9 @@ private:
     SceneConfig scene_;
     ShowScript show_;
     MasterOptions options_;
+    std::unique_ptr<SceneAtmospheres> atmospheres_;  // when auto exposure or glare needs them
     std::unique_ptr<AutoExposure> auto_exposure_;
+    std::unique_ptr<GlareSources> glare_sources_;    // when the scene has glare
     std::atomic<bool> stop_requested_{false};
 };
 

@@ -1,7 +1,8 @@
 #version 450 core
 // A planet or moon: analytic ray-sphere hit, equirectangular texture in the body frame
 // (lon = atan(y, x), north = +Z), Lambert-lit by the sun. Also writes the deferred geometry
-// the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres.
+// the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres, and a
+// logarithmic depth of that distance for the glare probe's occlusion queries.
 // Eclipse shadows: the sunlight at the surface point (normal * radius, relative to the centre,
 // like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl).
 uniform vec4 u_tangents;
@@ -39,5 +40,7 @@ void main() {
         light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances.y);
     }
     frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
-    frag_geometry = vec4(u_reflectance * albedo_map, sphere_hit_distance(v, u_center_dir, hit.w, u_distances));
+    float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances);
+    frag_geometry = vec4(u_reflectance * albedo_map, distance_m);
+    gl_FragDepth = log_depth(distance_m);  // only a depth target (the glare probe) keeps it
 }

@@ -95,5 +95,11 @@ void GlProgram::set(const char* n, const glm::mat4& m) const {
 void GlProgram::set(const char* n, const glm::vec3* v, int count) const {
     glUniform3fv(loc(n), count, glm::value_ptr(v[0]));
 }
+void GlProgram::set(const char* n, const glm::vec4* v, int count) const {
+    glUniform4fv(loc(n), count, glm::value_ptr(v[0]));
+}
+void GlProgram::set(const char* n, const glm::mat3* m, int count) const {
+    glUniformMatrix3fv(loc(n), count, GL_FALSE, glm::value_ptr(m[0]));
+}
 
 }  // namespace cupola

@@ -32,6 +32,8 @@ public:
     void set(const char* name, const glm::mat3& m) const;
     void set(const char* name, const glm::mat4& m) const;
     void set(const char* name, const glm::vec3* v, int count) const;
+    void set(const char* name, const glm::vec4* v, int count) const;
+    void set(const char* name, const glm::mat3* m, int count) const;
 
     // The text handed to the driver for one stage (the shader plus the shared files).
     static std::string assemble(const std::string& shader_name, const std::string& prelude = "");

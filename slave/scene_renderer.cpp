@@ -12,6 +12,8 @@
 #include "eclipse/umbra_light.hpp"
 #include "eclipse_shadow_uniforms.hpp"
 #include "gl_framebuffer.hpp"
+#include "glare_pass.hpp"
+#include "glare_probe.hpp"
 #include "projection/dome_frame.hpp"
 #include "scene/star_catalog.hpp"
 #include "sphere_billboard.hpp"
@@ -69,6 +71,10 @@ struct SceneRenderer::Impl {
           shadows(scene_sun_limb_u(scene)) {
         stats.tables_built_or_loaded = static_cast<int>(atmospheres.size());
         if (!atmospheres.empty()) atmosphere = std::make_unique<AtmospherePass>();
+        if (sc.glare.enabled) {
+            glare_probe = std::make_unique<GlareProbe>(cluster, ch, scene);
+            glare = std::make_unique<GlarePass>(scene);
+        }
     }
 
     SceneConfig scene;
@@ -83,6 +89,9 @@ struct SceneRenderer::Impl {
     std::unique_ptr<AtmospherePass> atmosphere;                       // only when some body has one
     ShadowCasting casting;          // which casters shadow which receiver, per frame (CPU, double)
     EclipseShadowUniforms shadows;  // the eclipse table and uniforms of the shadowed passes
+    std::unique_ptr<GlareProbe> glare_probe;  // only when the scene has glare
+    std::unique_ptr<GlarePass> glare;
+    std::vector<GlareMeasurement> no_measurements;
     AtmosphereStats stats;
 };
 
@@ -98,6 +107,10 @@ SceneRenderer::~SceneRenderer() {
 }
 
 AtmosphereStats SceneRenderer::atmosphere_stats() const { return impl_->stats; }
+
+const std::vector<GlareMeasurement>& SceneRenderer::glare_measurements() const {
+    return impl_->glare_probe ? impl_->glare_probe->latest() : impl_->no_measurements;
+}
 
 Image SceneRenderer::render(const Snapshot& snap) {
     Impl& m = *impl_;
@@ -152,6 +165,9 @@ Image SceneRenderer::render(const Snapshot& snap) {
             m.bodies.draw(view, *it.body, *it.state, it.sphere, light, m.shadows, casters[it.body->id]);
     }
 
+    // The glare probe: after every occluder, before what does not occlude (the atmosphere).
+    if (m.glare_probe) m.glare_probe->measure(snap, m.bodies, light, m.shadows);
+
     // Pass 4: atmospheres, far to near, each over everything drawn so far.
     const GlFramebuffer* current = &m.target_a;  // holds color_a, where the scene was drawn
     long run = 0, skipped = 0;
@@ -175,7 +191,13 @@ Image SceneRenderer::render(const Snapshot& snap) {
     if (!m.atmospheres.empty())
         spdlog::debug("frame {}: atmosphere passes {} run, {} skipped (totals {} / {})", snap.frame, run, skipped,
                       m.stats.passes_run, m.stats.passes_skipped);
+    // Pass 5: glare, last, without depth test, from the cluster-wide visibility.
+    if (m.glare && !snap.glare.empty()) {
+        current->bind();
+        m.glare->draw(view, snap, *m.glare_probe);
+    }
     glFinish();
+    if (m.glare_probe) m.glare_probe->collect();  // this frame's queries are done by now: no wait
     return current->read();
 }
 

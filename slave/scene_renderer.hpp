@@ -6,6 +6,7 @@
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "image/frame_image.hpp"
+#include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
@@ -24,6 +25,9 @@ public:
     ~SceneRenderer();
     Image render(const Snapshot& snapshot);
     AtmosphereStats atmosphere_stats() const;
+    // The newest finished glare occlusion-query results (for the frame report): after render()
+    // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.
+    const std::vector<GlareMeasurement>& glare_measurements() const;
 
 private:
     struct Impl;

@@ -138,6 +138,7 @@ int SlaveNode::run() {
         rep.packets_rejected = wire.counters().total_rejected() + malformed;
         rep.snapshots_missed = missed;
         rep.snapshot_received_ns = received_ns;
+        rep.glare = renderer.glare_measurements();  // this frame's queries, for the next snapshot
         wire.send(PacketType::FrameDone, rep.frame, encode_frame_report(rep), {master});
         last_report = rep;
         last_frame = snap.frame;

@@ -25,6 +25,7 @@
 #include "shading/shared_shading.hpp"
 #include "show_script.hpp"
 #include "support/cluster_fixture.hpp"
+#include "support/loopback_run.hpp"
 #include "util/child_process.hpp"
 
 using namespace cupola;
@@ -100,20 +101,7 @@ glm::dvec3 position_of(const Snapshot& snap, uint16_t id) {
     return {};
 }
 
-// Runs the loopback for `frames` frames of a cluster config built here; returns the output dir.
-std::string run_loopback(const std::string& dir, nlohmann::json cluster, int frames) {
-    cluster["key_file"] = test::source_path("configs/keys/loopback.key");
-    cluster["network"]["channel_timeout_ms"] = 60000;
-    cluster["network"]["hello_wait_ms"] = 60000;
-    const std::string config = dir + "/cluster.json";
-    test::write_text(config, cluster.dump(2));
-    const std::string out = dir + "/out";
-    ChildProcess p({test::bin_path("cupola-loopback"), "--config", config, "--frames", std::to_string(frames), "--out",
-                    out, "--timeout", "500"},
-                   dir + "/loopback.log", {"DISPLAY", "WAYLAND_DISPLAY", "SPDLOG_LEVEL"});
-    EXPECT_EQ(p.wait_for(std::chrono::seconds(520)).value_or(-1), 0) << test::read_text(dir + "/loopback.log");
-    return out;
-}
+using test::run_loopback;
 
 nlohmann::json keyframe(double at_s, double t_tt, const nlohmann::json& camera, const std::string& mode) {
     return {{"at_s", at_s}, {"time_utc", utc_of(t_tt)}, {"camera", camera}, {"shadow_mode", mode}};

@@ -11,6 +11,7 @@
 #include "config/cluster_config.hpp"
 #include "image/frame_image.hpp"
 #include "support/cluster_fixture.hpp"
+#include "support/loopback_run.hpp"
 #include "util/child_process.hpp"
 
 using namespace cupola;
@@ -19,23 +20,8 @@ using namespace std::chrono_literals;
 
 namespace {
 
-std::vector<nlohmann::json> read_events(const std::string& path) {
-    std::vector<nlohmann::json> out;
-    std::ifstream in(path);
-    std::string line;
-    while (std::getline(in, line))
-        if (!line.empty()) out.push_back(nlohmann::json::parse(line, nullptr, false));
-    return out;
-}
-
-bool wait_until(const std::function<bool()>& cond, std::chrono::seconds limit) {
-    const auto end = std::chrono::steady_clock::now() + limit;
-    while (std::chrono::steady_clock::now() < end) {
-        if (cond()) return true;
-        std::this_thread::sleep_for(50ms);
-    }
-    return cond();
-}
+using test::read_events;
+using test::wait_until;
 
 }  // namespace
 

@@ -45,8 +45,21 @@ Snapshot sample_snapshot(size_t bodies) {
     s.settings.exposure = 2.5f;
     s.settings.star_magnitude_limit = 6.5f;
     s.settings.flags = 0xA5A5u;
-    s.aggregates.push_back({1, 0, 0.75});
-    s.aggregates.push_back({1, 2, 1e-9});
+    s.settings.glare_phase = 12.25f;
+    GlareSource sun;
+    sun.body = 0;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -0.4f, 0.8f));
+    sun.angular_radius = 4.65e-3f;
+    sun.irradiance = {3.9f, 3.8f, 3.5f};
+    sun.visible_fraction = 0.5f;
+    sun.centroid_offset = {1e-3f, -2e-4f, 0.0f};
+    sun.origin = GlareOrigin::Measured;
+    sun.measured_frame = s.frame - 1;
+    s.glare.push_back(sun);
+    GlareSource sirius;
+    sirius.star = 12;
+    sirius.irradiance = {1e-9f, 1e-9f, 1.2e-9f};
+    s.glare.push_back(sirius);
     return s;
 }
 
@@ -100,10 +113,32 @@ TEST(Snapshot, MalformedPayloadsAreRefused) {
     EXPECT_THROW(decode_snapshot(qb.data(), qb.size()), WireError);
     // A body count that the payload cannot hold.
     auto huge = good;
-    const size_t count_at = 8 + 8 + 24 + 32 + 12;
+    const size_t count_at = 8 + 8 + 24 + 32 + 16;
     huge[count_at] = 0xFF;
     huge[count_at + 1] = 0xFF;
     EXPECT_THROW(decode_snapshot(huge.data(), huge.size()), WireError);
+    // Glare values a channel could not draw from are refused, naming the field.
+    auto refused_field = [](const Snapshot& bad) -> std::string {
+        const auto b = encode_snapshot(bad);
+        try {
+            decode_snapshot(b.data(), b.size());
+        } catch (const WireError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    Snapshot g = sample_snapshot(1);
+    g.glare[0].visible_fraction = 1.5f;
+    EXPECT_NE(refused_field(g).find("glare.visible_fraction"), std::string::npos) << refused_field(g);
+    g = sample_snapshot(1);
+    g.glare[0].direction = {0.0f, 0.0f, 2.0f};
+    EXPECT_NE(refused_field(g).find("glare.direction"), std::string::npos) << refused_field(g);
+    g = sample_snapshot(1);
+    g.glare[1].irradiance.y = std::numeric_limits<float>::infinity();
+    EXPECT_NE(refused_field(g).find("glare.irradiance"), std::string::npos) << refused_field(g);
+    g = sample_snapshot(1);
+    g.glare[0].origin = static_cast<GlareOrigin>(7);
+    EXPECT_NE(refused_field(g).find("glare.origin"), std::string::npos) << refused_field(g);
 }
 
 TEST(Packet, SingleDatagramRoundTrip) {
@@ -246,9 +281,29 @@ TEST(Reports, RoundTripAndRefuseGarbage) {
     EXPECT_EQ(d.snapshot_hash, r.snapshot_hash);
     EXPECT_EQ(d.render_ms, 12.5f);
     EXPECT_EQ(d.snapshot_received_ns, 123456789u);
+    EXPECT_TRUE(d.glare.empty());
     auto bytes = encode_frame_report(r);
     bytes[10] = '!';
     EXPECT_THROW(decode_frame_report(bytes), WireError);
+
+    // Glare measurements travel with the report, float for float.
+    GlareMeasurement m;
+    m.body = 0;
+    m.frame = 98;
+    m.total_sr = 6.8e-5f;
+    for (int i = 0; i < GlareMeasurement::kWedges; ++i) m.visible_sr[i] = 2e-6f * static_cast<float>(i);
+    r.glare = {m};
+    d = decode_frame_report(encode_frame_report(r));
+    ASSERT_EQ(d.glare.size(), 1u);
+    EXPECT_EQ(d.glare[0].frame, 98u);
+    EXPECT_EQ(d.glare[0].total_sr, m.total_sr);
+    EXPECT_EQ(d.glare[0].visible_sr[7], m.visible_sr[7]);
+    // More visible than total, or negative, is refused.
+    r.glare[0].visible_sr[7] = 1.0f;
+    EXPECT_THROW(decode_frame_report(encode_frame_report(r)), WireError);
+    r.glare[0].visible_sr[7] = -1e-6f;
+    EXPECT_THROW(decode_frame_report(encode_frame_report(r)), WireError);
+
     HelloMessage h{7, 4242, 17};
     HelloMessage hd = decode_hello(encode_hello(h));
     EXPECT_EQ(hd.channel, 7);

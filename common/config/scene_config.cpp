@@ -61,6 +61,27 @@ ShadowConfig read_shadows(const JsonReader& r, const SceneConfig& s) {
     return c;
 }
 
+GlareConfig read_glare(const JsonReader& g) {
+    GlareConfig c;
+    c.enabled = g.boolean("enabled", true);
+    c.strength = g.number_in("strength", 0.0, 1e6, c.strength);
+    c.extent_deg = g.number_in("extent_deg", 1.0, 85.0, c.extent_deg);
+    c.halo_radius_deg = g.number_in("halo_radius_deg", 0.1, 30.0, c.halo_radius_deg);
+    c.halo_width_deg = g.number_in("halo_width_deg", 0.01, 10.0, c.halo_width_deg);
+    c.halo_fraction = g.number_in("halo_fraction", 0.0, 1.0, c.halo_fraction);
+    c.streak_count = static_cast<int>(g.integer_in("streak_count", 2, 1024, c.streak_count));
+    if (c.streak_count % 2 != 0) g.fail("streak_count", "must be even (rays twinkle in pairs so the energy stays constant)");
+    c.streak_contrast = g.number_in("streak_contrast", 0.0, 1.0, c.streak_contrast);
+    c.animation_rate = g.number_in("animation_rate", 0.0, 100.0, c.animation_rate);
+    c.visibility = g.one_of("visibility", {"shared", "per_channel"}, "shared") == "shared" ? GlareVisibilityMode::Shared
+                                                                                          : GlareVisibilityMode::PerChannel;
+    c.min_display = g.number_in("min_display", 0.0, 1e6, c.min_display);
+    c.max_sources = static_cast<int>(g.integer_in("max_sources", 1, 64, c.max_sources));
+    c.probe_size = static_cast<int>(g.integer_in("probe_size", 8, 512, c.probe_size));
+    g.reject_unknown_keys();
+    return c;
+}
+
 AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
     AtmosphereConfig c;
     c.present = true;
@@ -145,6 +166,7 @@ SceneConfig load_scene_config(const std::string& file) {
     s.stars.zero_mag_flux = st.number_in("zero_mag_flux", 0.0, 1e6, s.stars.zero_mag_flux);
     st.reject_unknown_keys();
     if (auto sh = r.optional_child("shadows")) s.shadows = read_shadows(*sh, s);
+    if (auto g = r.optional_child("glare")) s.glare = read_glare(*g);
     r.reject_unknown_keys();
     return s;
 }

@@ -67,11 +67,39 @@ struct StarFieldConfig {
     double zero_mag_flux = 2.0e-3;    // integrated flux of a V=0 star in scene units x steradian
 };
 
+// How a channel decides how much of a glare source is visible: from the whole cluster's
+// measurements, shared by the master (seamless), or from its own query only and only while the
+// source's centre is in its own frustum -- the naive behaviour that clips the glare at channel
+// edges (seed 000, section 5.1.1), kept as a switch so tests can show the difference.
+enum class GlareVisibilityMode { Shared, PerChannel };
+
+// Sun glare (seed 000, sections 2.3 and 3.1; Spencer et al. 1995): bloom, lenticular halo and
+// ciliary-corona streaks on a viewpoint-oriented billboard per bright source, drawn last. Absent
+// from the scene file: no glare.
+struct GlareConfig {
+    bool enabled = false;
+    double strength = 1.0;           // x the physical point-spread function of the eye
+    double extent_deg = 60.0;        // nothing beyond this angle from a source
+    double halo_radius_deg = 3.5;    // lenticular halo ring at 550 nm (design value)
+    double halo_width_deg = 0.35;
+    double halo_fraction = 0.15;     // share of the flare energy in the ring
+    int streak_count = 96;           // ciliary-corona rays
+    double streak_contrast = 0.6;
+    double animation_rate = 1.0;     // animation phase per show second (carried in the snapshot)
+    GlareVisibilityMode visibility = GlareVisibilityMode::Shared;
+    // Stars and planets get a glare when its display value one degree from them (irradiance x
+    // exposure x PSF) reaches min_display; it fades in up to twice that, so nothing pops.
+    double min_display = 2e-3;
+    int max_sources = 8;             // the brightest sources, the Sun first
+    int probe_size = 64;             // occlusion-query probe, pixels per side
+};
+
 struct SceneConfig {
     std::string file;
     std::vector<BodyConfig> bodies;
     StarFieldConfig stars;
     ShadowConfig shadows;
+    GlareConfig glare;
 
     const BodyConfig* find(const std::string& name) const;
 };

@@ -39,6 +39,14 @@ std::vector<uint8_t> encode_frame_report(const FrameReport& rep) {
     w.u64(rep.packets_rejected);
     w.u64(rep.snapshots_missed);
     w.u64(rep.snapshot_received_ns);
+    w.u16(static_cast<uint16_t>(rep.glare.size()));
+    for (const auto& g : rep.glare) {
+        w.u16(g.body);
+        w.u32(g.star);
+        w.u64(g.frame);
+        w.f32(g.total_sr);
+        for (float v : g.visible_sr) w.f32(v);
+    }
     return out;
 }
 
@@ -58,6 +66,23 @@ FrameReport decode_frame_report(const std::vector<uint8_t>& p) {
     rep.packets_rejected = r.u64("report.packets_rejected");
     rep.snapshots_missed = r.u64("report.snapshots_missed");
     rep.snapshot_received_ns = r.u64("report.snapshot_received_ns");
+    const uint16_t n = r.u16("report.glare_count");
+    if (n > 64) throw WireError("report.glare_count " + std::to_string(n) + " exceeds 64");
+    rep.glare.resize(n);
+    for (auto& g : rep.glare) {
+        g.body = r.u16("report.glare.body");
+        g.star = r.u32("report.glare.star");
+        g.frame = r.u64("report.glare.frame");
+        g.total_sr = r.f32("report.glare.total_sr");
+        bool ok = std::isfinite(g.total_sr) && g.total_sr >= 0.0f;
+        for (float& v : g.visible_sr) {
+            v = r.f32("report.glare.visible_sr");
+            ok = ok && std::isfinite(v) && v >= 0.0f;
+        }
+        if (!ok) throw WireError("report.glare solid angles must be finite and non-negative");
+        if (g.visible_total_sr() > g.total_sr * 1.0001f + 1e-12f)
+            throw WireError("report.glare visible solid angle exceeds the total");
+    }
     if (r.remaining()) throw WireError("unexpected bytes after frame report");
     return rep;
 }

@@ -12,6 +12,25 @@ struct HelloMessage {
     uint64_t last_frame = 0;   // last frame this process rendered (0 if none)
 };
 
+// One channel's occlusion-query result for one glare source: the solid angle (steradian) of the
+// source's disc in the directions this channel owns (each direction of the dome is owned by
+// exactly one channel, so sums over channels count nothing twice), in total and unoccluded, per
+// angular wedge around the source's centre in the cluster-wide glare frame (for the direction
+// toward the visible part).
+struct GlareMeasurement {
+    static constexpr int kWedges = 8;
+    uint16_t body = 0xFFFF;  // as GlareSource: body id or catalogue star
+    uint32_t star = 0;
+    uint64_t frame = 0;      // the frame whose render the queries ran in
+    float total_sr = 0.0f;
+    float visible_sr[kWedges] = {};
+    float visible_total_sr() const {
+        float s = 0.0f;
+        for (float v : visible_sr) s += v;
+        return s;
+    }
+};
+
 // "frame N rendered" with per-channel measurements.
 struct FrameReport {
     uint16_t channel = 0;
@@ -22,6 +41,7 @@ struct FrameReport {
     uint64_t packets_rejected = 0;  // this slave's totals so far
     uint64_t snapshots_missed = 0;
     uint64_t snapshot_received_ns = 0;  // CLOCK_MONOTONIC when the whole snapshot arrived (one-host latency)
+    std::vector<GlareMeasurement> glare;  // this frame's (or, if the GPU was late, an earlier frame's) queries
 };
 
 std::vector<uint8_t> encode_hello(const HelloMessage& m);

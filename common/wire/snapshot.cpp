@@ -11,7 +11,7 @@ namespace cupola {
 
 namespace {
 constexpr size_t kMaxBodies = 4096;
-constexpr size_t kMaxAggregates = 65536;
+constexpr size_t kMaxGlareSources = 64;
 
 void put_dvec3(ByteWriter& w, const glm::dvec3& v) {
     w.f64(v.x);
@@ -28,6 +28,23 @@ double finite(ByteReader& r, const char* field) {
     double d = r.f64(field);
     if (!std::isfinite(d)) throw WireError(std::string("non-finite value in field '") + field + "'");
     return d;
+}
+void put_vec3(ByteWriter& w, const glm::vec3& v) {
+    w.f32(v.x);
+    w.f32(v.y);
+    w.f32(v.z);
+}
+float finite_f(ByteReader& r, const char* field) {
+    float f = r.f32(field);
+    if (!std::isfinite(f)) throw WireError(std::string("non-finite value in field '") + field + "'");
+    return f;
+}
+glm::vec3 get_vec3(ByteReader& r, const char* field) {
+    glm::vec3 v;
+    v.x = finite_f(r, field);
+    v.y = finite_f(r, field);
+    v.z = finite_f(r, field);
+    return v;
 }
 glm::dvec3 get_dvec3(ByteReader& r, const char* field) {
     glm::dvec3 v;
@@ -50,7 +67,7 @@ glm::dquat get_dquat(ByteReader& r, const char* field) {
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     std::vector<uint8_t> out;
-    out.reserve(96 + s.bodies.size() * 58 + s.aggregates.size() * 12);
+    out.reserve(100 + s.bodies.size() * 58 + s.glare.size() * 59);
     ByteWriter w(out);
     w.u64(s.frame);
     w.f64(s.sim_time_s);
@@ -59,17 +76,24 @@ std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     w.f32(s.settings.exposure);
     w.f32(s.settings.star_magnitude_limit);
     w.u32(s.settings.flags);
+    w.f32(s.settings.glare_phase);
     w.u32(static_cast<uint32_t>(s.bodies.size()));
     for (const auto& b : s.bodies) {
         w.u16(b.id);
         put_dvec3(w, b.position_m);
         put_dquat(w, b.orientation);
     }
-    w.u32(static_cast<uint32_t>(s.aggregates.size()));
-    for (const auto& a : s.aggregates) {
-        w.u16(a.key);
-        w.u16(a.subject);
-        w.f64(a.value);
+    w.u32(static_cast<uint32_t>(s.glare.size()));
+    for (const auto& g : s.glare) {
+        w.u16(g.body);
+        w.u32(g.star);
+        put_vec3(w, g.direction);
+        w.f32(g.angular_radius);
+        put_vec3(w, g.irradiance);
+        w.f32(g.visible_fraction);
+        put_vec3(w, g.centroid_offset);
+        w.u8(static_cast<uint8_t>(g.origin));
+        w.u64(g.measured_frame);
     }
     return out;
 }
@@ -88,6 +112,7 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
     if (!std::isfinite(s.settings.star_magnitude_limit))
         throw WireError("field 'settings.star_magnitude_limit' is not finite");
     s.settings.flags = r.u32("settings.flags");
+    s.settings.glare_phase = finite_f(r, "settings.glare_phase");
     uint32_t nb = r.u32("body_count");
     if (nb > kMaxBodies) throw WireError("body_count " + std::to_string(nb) + " exceeds " + std::to_string(kMaxBodies));
     s.bodies.resize(nb);
@@ -96,13 +121,29 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
         b.position_m = get_dvec3(r, "bodies.position_m");
         b.orientation = get_dquat(r, "bodies.orientation");
     }
-    uint32_t na = r.u32("aggregate_count");
-    if (na > kMaxAggregates) throw WireError("aggregate_count " + std::to_string(na) + " is too large");
-    s.aggregates.resize(na);
-    for (auto& a : s.aggregates) {
-        a.key = r.u16("aggregates.key");
-        a.subject = r.u16("aggregates.subject");
-        a.value = finite(r, "aggregates.value");
+    uint32_t ng = r.u32("glare_count");
+    if (ng > kMaxGlareSources)
+        throw WireError("glare_count " + std::to_string(ng) + " exceeds " + std::to_string(kMaxGlareSources));
+    s.glare.resize(ng);
+    for (auto& g : s.glare) {
+        g.body = r.u16("glare.body");
+        g.star = r.u32("glare.star");
+        g.direction = get_vec3(r, "glare.direction");
+        if (std::abs(glm::length(g.direction) - 1.0f) > 1e-4f) throw WireError("field 'glare.direction' is not a unit vector");
+        g.angular_radius = finite_f(r, "glare.angular_radius");
+        if (g.angular_radius < 0.0f || g.angular_radius > 1.6f)
+            throw WireError("field 'glare.angular_radius' must lie in [0, pi/2]");
+        g.irradiance = get_vec3(r, "glare.irradiance");
+        if (glm::any(glm::lessThan(g.irradiance, glm::vec3(0.0f))))
+            throw WireError("field 'glare.irradiance' must not be negative");
+        g.visible_fraction = finite_f(r, "glare.visible_fraction");
+        if (g.visible_fraction < 0.0f || g.visible_fraction > 1.0f)
+            throw WireError("field 'glare.visible_fraction' must lie in [0, 1]");
+        g.centroid_offset = get_vec3(r, "glare.centroid_offset");
+        const uint8_t origin = r.u8("glare.origin");
+        if (origin > static_cast<uint8_t>(GlareOrigin::Analytic)) throw WireError("field 'glare.origin' is unknown");
+        g.origin = static_cast<GlareOrigin>(origin);
+        g.measured_frame = r.u64("glare.measured_frame");
     }
     if (r.remaining() != 0)
         throw WireError(std::to_string(r.remaining()) + " unexpected bytes after the snapshot's last field");

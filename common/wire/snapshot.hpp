@@ -21,17 +21,33 @@ struct BodyState {
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;  // reserved for effect switches (atmosphere, shadows, glare)
+    uint32_t flags = 0;       // effect switches (bits 0..2: eclipse shadow mode)
+    float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     bool operator==(const RenderSettings&) const = default;
 };
 
-// A value the master aggregates from the channels' reports and shares with every channel
-// (the glare issue puts per-body visibility here).
-struct ClusterAggregate {
-    uint16_t key = 0;
-    uint16_t subject = 0;  // e.g. body id
-    double value = 0.0;
-    bool operator==(const ClusterAggregate&) const = default;
+// Where a glare source's visible fraction came from.
+enum class GlareOrigin : uint8_t {
+    Measured = 0,  // the channels' occlusion queries of the previous frame, summed by the master
+    Analytic = 1,  // spherical occluders (a report was missing, or no channel sees the source)
+};
+
+// A source of glare (the Sun, a bright planet or star) as the master shares it with every
+// channel: where it is, how bright, and how much of it the whole cluster saw. Every channel
+// draws the glare from these values, including channels where the source is out of view.
+struct GlareSource {
+    static constexpr uint16_t kCatalogStar = 0xFFFF;
+    uint16_t body = kCatalogStar;   // scene body id, or kCatalogStar
+    uint32_t star = 0;              // catalogue index when body == kCatalogStar
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, world frame, camera to the source's centre
+    float angular_radius = 0.0f;    // radians (0: a point)
+    glm::vec3 irradiance{0.0f};     // rgb, scene units x sr at the camera (after any atmosphere)
+    float visible_fraction = 1.0f;  // cluster-wide
+    glm::vec3 centroid_offset{0.0f};  // world frame, radians: centre -> centroid of the visible part
+    GlareOrigin origin = GlareOrigin::Analytic;
+    uint64_t measured_frame = 0;    // frame whose queries gave visible_fraction (when Measured)
+    bool operator==(const GlareSource&) const = default;
+    bool same_source(const GlareSource& o) const { return body == o.body && star == o.star; }
 };
 
 struct Snapshot {
@@ -41,7 +57,7 @@ struct Snapshot {
     glm::dquat camera_orientation{1.0, 0.0, 0.0, 0.0};
     std::vector<BodyState> bodies;
     RenderSettings settings;
-    std::vector<ClusterAggregate> aggregates;
+    std::vector<GlareSource> glare;  // brightest first; empty when the scene has no glare
 
     bool operator==(const Snapshot&) const = default;
 };

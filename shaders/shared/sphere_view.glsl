@@ -44,3 +44,11 @@ float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
     float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
     return min(dist.z * (dist.w / den), 1e30);
 }
+
+// Window depth of a camera distance, logarithmic from 1 m to 2^96 m (float keeps relative
+// distances to ~1e-5 over the whole range). The bodies write it so that the glare probe's
+// depth test orders them by true distance: their billboards all sit at the same scaled
+// distance, so the rasterised depth means nothing.
+float log_depth(float distance_m) {
+    return clamp(log2(max(distance_m, 1.0)) / 96.0, 0.0, 1.0);
+}

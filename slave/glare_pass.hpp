@@ -1,0 +1,37 @@
+#pragma once
+// The last pass: the glare of every source the master shares (snapshot.glare), on a
+// viewpoint-oriented billboard per source -- its normal points at the shared camera position,
+// its axes are the cluster-wide glare frame (common/glare/glare_frame), its size the glare's
+// angular extent -- drawn without depth test, added to the HDR image. Every channel draws every
+// source, also where the source itself is out of its frustum, from the shared visible fraction;
+// in per-channel mode (the naive comparison) only while the source's centre is in its own
+// frustum, from its own query.
+#include "config/scene_config.hpp"
+#include "gl_buffer.hpp"
+#include "gl_program.hpp"
+#include "glare_probe.hpp"
+#include "sphere_billboard.hpp"
+#include "wire/snapshot.hpp"
+
+namespace cupola {
+
+class GlarePass {
+public:
+    explicit GlarePass(const SceneConfig& scene);
+    // Draws into the bound colour target (attachment 0).
+    void draw(const ChannelView& view, const Snapshot& snap, const GlareProbe& probe);
+
+    // The angle beyond which a source's glare stays below a quarter of glare.min_display on the
+    // dome (at most glare.extent_deg): fainter sources get smaller billboards.
+    double extent_rad(const GlareSource& source, double exposure) const;
+
+    long sources_drawn() const { return drawn_; }
+
+private:
+    const SceneConfig* scene_;
+    GlProgram program_;
+    GlEmptyVertexArray vao_;
+    long drawn_ = 0;
+};
+
+}  // namespace cupola
