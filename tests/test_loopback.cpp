@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
@@ -14,6 +15,7 @@
 #include "projection/fisheye.hpp"
 #include "scene/star_catalog.hpp"
 #include "support/cluster_fixture.hpp"
+#include "support/loopback_run.hpp"
 #include "util/child_process.hpp"
 #include "wire/snapshot.hpp"
 
@@ -49,20 +51,26 @@ const LoopbackRun& run_once() {
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
-// Background-subtracted, luminance-weighted centroid in a (2r+1)^2 window.
+// Luminance-weighted centroid in a (2r+1)^2 window after subtracting the background as a plane
+// fitted (least squares) to the window's border: the sky, or a glare, may have a gradient.
 std::optional<glm::dvec2> centroid(const Image& img, glm::dvec2 around, int r) {
     int cx = static_cast<int>(std::floor(around.x)), cy = static_cast<int>(std::floor(around.y));
-    double bg = 1e30;
+    glm::dmat3 ata(0.0);
+    glm::dvec3 atb(0.0);
     for (int y = cy - r; y <= cy + r; ++y)
         for (int x = cx - r; x <= cx + r; ++x) {
             if (x < 0 || y < 0 || x >= img.width || y >= img.height) return std::nullopt;
             if (img.pixel(x, y)[3] <= 0.0f) return std::nullopt;
-            bg = std::min(bg, luminance(img.pixel(x, y)));
+            if (std::abs(x - cx) != r && std::abs(y - cy) != r) continue;
+            const glm::dvec3 row(1.0, x - cx, y - cy);
+            ata += glm::outerProduct(row, row);
+            atb += row * luminance(img.pixel(x, y));
         }
+    const glm::dvec3 plane = glm::inverse(ata) * atb;
     double sw = 0, sx = 0, sy = 0;
     for (int y = cy - r; y <= cy + r; ++y)
         for (int x = cx - r; x <= cx + r; ++x) {
-            double w = luminance(img.pixel(x, y)) - bg;
+            double w = std::max(0.0, luminance(img.pixel(x, y)) - glm::dot(plane, glm::dvec3(1.0, x - cx, y - cy)));
             sw += w;
             sx += w * (x + 0.5);
             sy += w * (y + 0.5);
@@ -94,9 +102,18 @@ void check_same_snapshot_hash_per_frame() {
     const ClusterConfig cfg = load_cluster_config(r.config);
     const SceneConfig scene = load_scene_config(cfg.scene_file);
     const ShowScript show = ShowScript::load(cfg.show_file, scene);
+    // Frame 0 is what the show alone defines (glare sources with their analytic visibility);
+    // from frame 1 on the master also writes the cluster's measured glare visibility into the
+    // snapshot, so the hash it sent is taken from its events file.
+    std::map<int, std::string> sent;
+    for (const auto& e : test::read_events(r.out + "/logs/events.jsonl"))
+        if (e.value("event", "") == "frame") sent[e.at("frame").get<int>()] = e.at("hash").get<std::string>();
+    const AutoExposure exposure(cfg, scene);
+    const GlareSources glare(scene, nullptr);
+    EXPECT_EQ(sent[0], snapshot_hash(encode_snapshot(make_frame_snapshot(cfg, scene, show, 0, &exposure, &glare))));
     for (int f = 0; f < kFrames; ++f) {
-        // The hash the master must have sent, recomputed here from the show.
-        const std::string expected = snapshot_hash(encode_snapshot(make_frame_snapshot(cfg, scene, show, f)));
+        const std::string expected = sent[f];
+        ASSERT_EQ(expected.size(), 16u) << "no hash for frame " << f << " in the master's events";
         for (const auto& ch : cfg.channels) {
             FrameMetadata meta;
             read_image(r.out + "/" + ch.name + "/" + frame_file_name(f, "exr"), &meta);
