@@ -5,6 +5,7 @@
 
 #include "atmosphere/solar_scale.hpp"
 #include "projection/dome_frame.hpp"
+#include "scene/snapshot_bodies.hpp"
 
 namespace cupola {
 
@@ -25,15 +26,9 @@ AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scen
 AutoExposure::~AutoExposure() = default;
 
 double AutoExposure::mean_luminance(const Snapshot& snap) const {
-    const BodyState* sun_state = nullptr;
-    const BodyConfig* sun = nullptr;
-    for (const auto& st : snap.bodies)
-        if (st.id < scene_->bodies.size() && scene_->bodies[st.id].kind == BodyKind::Star) {
-            sun_state = &st;
-            sun = &scene_->bodies[st.id];
-            break;
-        }
-    if (!sun || !atmospheres_ || atmospheres_->empty()) return 0.0;
+    const BodyState* sun_state = find_star(snap, *scene_);
+    if (!sun_state || !atmospheres_ || atmospheres_->empty()) return 0.0;
+    const BodyConfig& sun = scene_->bodies[sun_state->id];
     // Directions: an 8 x 8 grid of pixel-centre rays through every channel's frustum -- exactly
     // what the cluster renders, known to the master from the cluster config.
     std::vector<glm::dvec3> dirs;
@@ -50,15 +45,13 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
     }
     double sum = 0.0;
     for (const auto& body : atmospheres_->bodies()) {
-        const BodyState* st = nullptr;
-        for (const auto& s : snap.bodies)
-            if (s.id == body->config->id) st = &s;
+        const BodyState* st = find_body(snap, body->config->id);
         if (!st) continue;
         const glm::dvec3 to_centre = st->position_m - snap.camera_position_m;
         const double d = glm::length(to_centre);
         const glm::dvec3 c_hat = to_centre / d;
         const glm::dvec3 sun_dir = glm::normalize(sun_state->position_m - snap.camera_position_m);
-        const double scale = atmosphere::solar_scale(body->model, *sun, glm::length(sun_state->position_m - st->position_m));
+        const double scale = atmosphere::solar_scale(body->model, sun, glm::length(sun_state->position_m - st->position_m));
         // Eclipse shadows on this body, relative to its centre in world axes (what the slaves do
         // in channel axes), so that the exposure opens up in totality.
         const shading::EclipseCasters casters = casting_->casters_for(snap, st->id, glm::dmat3(1.0));

@@ -6,6 +6,7 @@
 
 #include "atmosphere/solar_scale.hpp"
 #include "glare/analytic_visibility.hpp"
+#include "scene/snapshot_bodies.hpp"
 #include "shading/shared_shading.hpp"
 
 namespace cupola {
@@ -56,14 +57,8 @@ std::vector<GlareSource> GlareSources::select(const Snapshot& snap) const {
         return atmospheres_ ? atmospheres_->transmittance(snap, dir) : glm::dvec3(1.0);
     };
 
-    const BodyState* sun_state = nullptr;
-    const BodyConfig* sun = nullptr;
-    for (const auto& st : snap.bodies)
-        if (st.id < scene_->bodies.size() && scene_->bodies[st.id].kind == BodyKind::Star) {
-            sun_state = &st;
-            sun = &scene_->bodies[st.id];
-            break;
-        }
+    const BodyState* sun_state = find_star(snap, *scene_);
+    const BodyConfig* sun = sun_state ? &scene_->bodies[sun_state->id] : nullptr;
 
     struct Candidate {
         GlareSource source;

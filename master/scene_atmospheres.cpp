@@ -1,4 +1,5 @@
 #include "scene_atmospheres.hpp"
+#include "scene/snapshot_bodies.hpp"
 
 namespace cupola {
 
@@ -13,9 +14,7 @@ SceneAtmospheres::SceneAtmospheres(const SceneConfig& scene) {
 glm::dvec3 SceneAtmospheres::transmittance(const Snapshot& snap, const glm::dvec3& direction) const {
     glm::dvec3 t(1.0);
     for (const auto& body : bodies_) {
-        const BodyState* st = nullptr;
-        for (const auto& s : snap.bodies)
-            if (s.id == body->config->id) st = &s;
+        const BodyState* st = find_body(snap, body->config->id);
         if (!st) continue;
         const glm::dvec3 to_centre = st->position_m - snap.camera_position_m;
         const double d = glm::length(to_centre);

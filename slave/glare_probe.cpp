@@ -8,6 +8,7 @@
 
 #include "glare/glare_frame.hpp"
 #include "projection/dome_frame.hpp"
+#include "scene/snapshot_bodies.hpp"
 #include "shading/shared_shading.hpp"
 #include "sphere_billboard.hpp"
 
@@ -109,9 +110,8 @@ void GlareProbe::measure(const Snapshot& snap, BodyPass& bodies, const SunLight&
         // Bin 1: the occluders, depth only, by true distance.
         double source_near_m = 1e300;
         if (src.body != GlareSource::kCatalogStar)
-            for (const auto& st : snap.bodies)
-                if (st.id == src.body)
-                    source_near_m = glm::length(st.position_m - snap.camera_position_m) - scene_->bodies[st.id].radius_m;
+            if (const BodyState* st = find_body(snap, src.body))
+                source_near_m = glm::length(st->position_m - snap.camera_position_m) - scene_->bodies[st->id].radius_m;
         target_.bind();
         target_.clear_depth(1.0f);
         glEnable(GL_DEPTH_TEST);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/snapshot_bodies.hpp"
+
 namespace cupola {
 
 std::vector<std::vector<uint16_t>> shadow_candidates(const SceneConfig& scene) {
@@ -42,13 +44,9 @@ bool penumbra_reaches(const glm::dvec3& sun, double sun_r, const glm::dvec3& cas
 
 EclipseSun eclipse_sun(const SceneConfig& scene, const Snapshot& snap) {
     EclipseSun s;
-    for (const auto& st : snap.bodies) {
-        if (st.id >= scene.bodies.size()) continue;
-        const BodyConfig& b = scene.bodies[st.id];
-        if (b.kind == BodyKind::Star) {
-            s = {true, st.position_m, b.radius_m, b.limb_darkening_u};
-            break;
-        }
+    if (const BodyState* st = find_star(snap, scene)) {
+        const BodyConfig& b = scene.bodies[st->id];
+        s = {true, st->position_m, b.radius_m, b.limb_darkening_u};
     }
     return s;
 }
@@ -62,16 +60,11 @@ std::vector<uint16_t> ShadowCasting::active_casters(const Snapshot& snap, uint16
     if (shadow_mode_of(snap.settings.flags) == ShadowMode::Off) return out;
     const EclipseSun sun = eclipse_sun(scene_, snap);
     if (!sun.present) return out;
-    auto state_of = [&](uint16_t id) -> const BodyState* {
-        for (const auto& st : snap.bodies)
-            if (st.id == id) return &st;
-        return nullptr;
-    };
-    const BodyState* r = state_of(receiver);
+    const BodyState* r = find_body(snap, receiver);
     if (!r) return out;
     std::vector<std::pair<double, uint16_t>> hits;
     for (uint16_t c : candidates_[receiver]) {
-        const BodyState* cs = state_of(c);
+        const BodyState* cs = find_body(snap, c);
         if (!cs) continue;
         if (penumbra_reaches(sun.position_m, sun.radius_m, cs->position_m, scene_.bodies[c].radius_m, r->position_m,
                              shadow_bounding_radius(scene_.bodies[receiver])))
@@ -89,9 +82,8 @@ shading::EclipseCasters ShadowCasting::casters_for(const Snapshot& snap, uint16_
     const std::vector<uint16_t> ids = active_casters(snap, receiver);
     if (ids.empty()) return e;
     const EclipseSun sun = eclipse_sun(scene_, snap);
-    glm::dvec3 receiver_pos(0.0);
-    for (const auto& st : snap.bodies)
-        if (st.id == receiver) receiver_pos = st.position_m;
+    const BodyState* receiver_state = find_body(snap, receiver);
+    const glm::dvec3 receiver_pos = receiver_state ? receiver_state->position_m : glm::dvec3(0.0);
     e.mode = static_cast<int>(shadow_mode_of(snap.settings.flags));
     e.limb_u = static_cast<float>(sun.limb_u);
     e.butterworth_order = static_cast<float>(scene_.shadows.butterworth_order);
