@@ -17,6 +17,14 @@ bool FrameBarrier::on_alive(int channel, Clock::time_point now) {
     return true;
 }
 
+void FrameBarrier::on_restart(int channel, Clock::time_point now) {
+    auto it = channels_.find(channel);
+    if (it == channels_.end()) return;
+    it->second.state = ChannelState::Live;
+    it->second.reported = false;
+    it->second.expected_since = now;
+}
+
 void FrameBarrier::start_frame(uint64_t frame, Clock::time_point now) {
     frame_ = frame;
     for (auto& [id, e] : channels_) {

@@ -21,6 +21,9 @@ public:
 
     // Returns true when the channel was absent or dropped and is now live again.
     bool on_alive(int channel, Clock::time_point now);
+    // A new process took over the channel (it may still be live under the old one): it is live
+    // and expected for the current frame from now.
+    void on_restart(int channel, Clock::time_point now);
     void start_frame(uint64_t frame, Clock::time_point now);
     // Returns false when the report is for another frame or an unknown channel.
     bool on_report(int channel, uint64_t frame, Clock::time_point now);

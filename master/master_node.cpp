@@ -4,10 +4,14 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "frame_barrier.hpp"
+#include "master_counters.hpp"
+#include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
+#include "util/stats_writer.hpp"
 #include "util/monotonic_clock.hpp"
 #include "wire/byte_io.hpp"
 #include "wire/reports.hpp"
@@ -66,66 +70,109 @@ private:
 }  // namespace
 
 int MasterNode::run() {
-    const AuthKey key = load_key_file(cluster_.key_file);
-    WireEndpoint wire = open_master_endpoint(cluster_, key);
+    const AuthKey key = load_key_file(cluster_.key_file, cluster_.network.strict_key_permissions);
+    const uint64_t session = new_session_nonce();
+    WireEndpoint wire = open_master_endpoint(cluster_, key, session);
     const auto destinations = snapshot_destinations(cluster_);
     EventLog events(options_.events_file);
+    spdlog::info("master: session {:016x}", session);
 
     std::vector<int> ids;
     for (const auto& c : cluster_.channels) ids.push_back(c.id);
     FrameBarrier barrier(ids, milliseconds(cluster_.network.channel_timeout_ms));
+    MasterCounters counters;
+    StatsWriter stats(options_.stats_file, "master");
+    std::map<int, Clock::time_point> last_welcome;
+    std::map<int, HelloMessage> hellos;  // the last verified hello of each channel's process
+    std::set<int> quit_acked;
+    uint64_t current_frame = 0;
+    auto stats_json = [&] {
+        return nlohmann::json{{"role", "master"},
+                              {"session", fmt::format("{:016x}", session)},
+                              {"frame", current_frame},
+                              {"live", barrier.live_count()},
+                              {"master", counters.to_json()},
+                              {"wire", wire.counters().to_json()}};
+    };
 
-    auto handle = [&](const ReceivedMessage& rm, uint64_t current_frame, uint64_t sent_ns,
-                      std::map<int, FrameReport>& reports) -> bool /* rejoined */ {
+    // Returns true when the channel (re)joined and must be sent the current snapshot again.
+    auto handle = [&](const ReceivedMessage& rm, uint64_t frame, uint64_t sent_ns,
+                      std::map<int, FrameReport>& reports) -> bool {
         const Message& m = rm.message;
         if (!barrier.known(m.sender)) {
-            spdlog::warn("master: message from unknown channel {} at {} ignored", m.sender, to_string(rm.from));
+            if (++counters.unknown_channel <= 3 || counters.unknown_channel % 100 == 0)
+                spdlog::warn("master: message from unknown channel {} at {} ignored ({} so far)", m.sender,
+                             to_string(rm.from), counters.unknown_channel);
             return false;
         }
         const auto now = Clock::now();
         try {
-            switch (m.type) {
-                case PacketType::Hello: {
-                    HelloMessage h = decode_hello(m.payload);
-                    if (h.channel != m.sender) throw WireError("hello names another channel than its sender");
-                    bool rejoined = barrier.on_alive(m.sender, now);
-                    if (rejoined) {
-                        spdlog::info("master: channel {} joined (pid {}, last frame {})", m.sender, h.process_id, h.last_frame);
-                        events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", current_frame},
-                                      {"pid", h.process_id}});
+            if (m.type == PacketType::Hello) {
+                const HelloMessage h = decode_hello(m.payload);
+                if (h.channel != m.sender) throw WireError("hello names another channel than its sender");
+                if (rm.to_session != session) {
+                    // A process that has not seen this master's session yet: prove it is live now.
+                    if (now - last_welcome[m.sender] >= milliseconds(20)) {
+                        wire.send(PacketType::Welcome, frame, encode_welcome({h.channel, frame}), destinations,
+                                  m.session);
+                        last_welcome[m.sender] = now;
+                        ++counters.welcomes_sent;
                     }
-                    return rejoined;
+                    return false;
                 }
+                hellos[m.sender] = h;
+                const bool was_live = barrier.state(m.sender) == ChannelState::Live;
+                if (rm.opened) barrier.on_restart(m.sender, now);
+                else if (!barrier.on_alive(m.sender, now)) return false;
+                ++counters.channel_joins;
+                if (rm.opened && was_live) ++counters.channel_restarts;
+                spdlog::info("master: channel {} joined (pid {}, {}){}", m.sender, h.process_id,
+                             h.has_frame ? "last frame " + std::to_string(h.last_frame) : "no frame yet",
+                             rm.opened && was_live ? ", a new process replacing a live one" : "");
+                events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", frame},
+                              {"pid", h.process_id}, {"new_process", rm.opened}});
+                return true;
+            }
+            if (!rm.verified) return false;  // only hellos are answered before the handshake
+            switch (m.type) {
                 case PacketType::Heartbeat: {
-                    bool rejoined = barrier.on_alive(m.sender, now);
-                    if (rejoined)
-                        events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", current_frame}});
-                    return rejoined;
+                    if (!barrier.on_alive(m.sender, now)) return false;
+                    ++counters.channel_joins;
+                    events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", frame}});
+                    return true;
                 }
                 case PacketType::FrameDone: {
                     FrameReport rep = decode_frame_report(m.payload);
                     if (rep.channel != m.sender) throw WireError("report names another channel than its sender");
                     const bool was_live = barrier.state(m.sender) == ChannelState::Live;
-                    if (barrier.on_report(m.sender, rep.frame, now)) {
-                        if (!was_live) events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", current_frame}});
-                        if (sent_ns && rep.snapshot_received_ns >= sent_ns) rep.snapshot_received_ns -= sent_ns;
-                        else rep.snapshot_received_ns = 0;
-                        reports[m.sender] = rep;
-                        return !was_live;
+                    if (!barrier.on_report(m.sender, rep.frame, now)) {
+                        ++counters.late_reports;
+                        return false;
                     }
+                    if (!was_live) {
+                        ++counters.channel_joins;
+                        events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", frame}});
+                    }
+                    if (sent_ns && rep.snapshot_received_ns >= sent_ns) rep.snapshot_received_ns -= sent_ns;
+                    else rep.snapshot_received_ns = 0;
+                    reports[m.sender] = rep;
                     return false;
                 }
+                case PacketType::QuitAck:
+                    if (quit_acked.insert(m.sender).second) ++counters.quit_acks;
+                    return false;
                 default:
                     spdlog::warn("master: unexpected {} message from channel {}", packet_type_name(m.type), m.sender);
                     return false;
             }
         } catch (const WireError& e) {
+            ++counters.malformed_messages;
             spdlog::warn("master: malformed {} from channel {}: {}", packet_type_name(m.type), m.sender, e.what());
             return false;
         }
     };
 
-    // Wait for the channels to say hello.
+    // Wait for the channels to say hello (and complete the handshake).
     {
         std::map<int, FrameReport> unused;
         const auto until = Clock::now() + milliseconds(cluster_.network.hello_wait_ms);
@@ -133,9 +180,29 @@ int MasterNode::run() {
         while (barrier.live_count() < static_cast<int>(ids.size()) && Clock::now() < until && !stop_requested_) {
             auto left = std::chrono::duration_cast<milliseconds>(until - Clock::now()).count();
             if (auto m = wire.receive(static_cast<int>(std::min<long long>(left, 100)))) handle(*m, 0, 0, unused);
+            stats.tick(stats_json);
         }
         if (barrier.live_count() < static_cast<int>(ids.size()))
             spdlog::warn("master: starting with {} of {} channels; the others may join later", barrier.live_count(), ids.size());
+    }
+    // Resume after the last frame that every joined channel rendered (a restarted master).
+    uint64_t start_frame = 0;
+    if (options_.resume) {
+        std::optional<uint64_t> resume_after;
+        for (const auto& [id, h] : hellos) {
+            if (barrier.state(id) != ChannelState::Live) continue;
+            if (!h.has_frame) {
+                resume_after.reset();
+                break;
+            }
+            resume_after = std::min(resume_after.value_or(h.last_frame), h.last_frame);
+        }
+        if (resume_after) {
+            start_frame = *resume_after + 1;
+            spdlog::info("master: the channels already rendered up to frame {}: resuming the show at frame {}",
+                         *resume_after, start_frame);
+            events.write({{"event", "resumed"}, {"frame", start_frame}});
+        }
     }
 
     GlareSharing glare_sharing(cluster_);
@@ -143,9 +210,10 @@ int MasterNode::run() {
     const auto run_start = Clock::now();
     uint64_t frames_done = 0;
     uint64_t frames_incomplete = 0;
-    for (uint64_t frame = 0; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
+    for (uint64_t frame = start_frame; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
+        current_frame = frame;
         Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame, auto_exposure_.get(), glare_sources_.get());
-        if (frame > 0) glare_sharing.apply(snap, previous_reports, frame - 1);
+        if (frame > start_frame) glare_sharing.apply(snap, previous_reports, frame - 1);
         const std::vector<uint8_t> payload = encode_snapshot(snap);
         const std::string hash = snapshot_hash(payload);
 
@@ -153,33 +221,31 @@ int MasterNode::run() {
         barrier.start_frame(frame, frame_start);
         const uint64_t sent_ns = monotonic_ns();
         wire.send(PacketType::Snapshot, frame, payload, destinations);
+        ++counters.snapshots_sent;
         auto last_send = Clock::now();
+        auto resend = [&] {
+            wire.send(PacketType::Snapshot, frame, payload, destinations);
+            ++counters.snapshot_resends;
+            last_send = Clock::now();
+        };
         std::map<int, FrameReport> reports;
-        std::vector<int> dropped_now;
 
         while (!barrier.complete() && !stop_requested_) {
             const auto resend_at = last_send + milliseconds(cluster_.network.resend_interval_ms);
             const auto wake = std::min(resend_at, barrier.next_deadline());
             auto wait = std::chrono::duration_cast<milliseconds>(wake - Clock::now()).count();
-            if (auto m = wire.receive(static_cast<int>(std::clamp<long long>(wait, 0, 1000)))) {
-                if (handle(*m, frame, sent_ns, reports)) {
-                    // A (re)joined channel renders the current frame: send it again now.
-                    wire.send(PacketType::Snapshot, frame, payload, destinations);
-                    last_send = Clock::now();
-                }
-            }
+            if (auto m = wire.receive(static_cast<int>(std::clamp<long long>(wait, 0, 1000))))
+                if (handle(*m, frame, sent_ns, reports)) resend();  // a (re)joined channel renders this frame
             const auto now = Clock::now();
             for (int id : barrier.expire(now)) {
+                ++counters.channel_drops;
                 spdlog::warn("master: channel {} silent for {} ms at frame {}: dropped, the others go on", id,
                              cluster_.network.channel_timeout_ms, frame);
                 events.write({{"event", "channel_dropped"}, {"channel", id}, {"frame", frame}});
-                dropped_now.push_back(id);
             }
-            if (!barrier.complete() && now >= last_send + milliseconds(cluster_.network.resend_interval_ms)) {
-                // A lost datagram costs a resend, not the session.
-                wire.send(PacketType::Snapshot, frame, payload, destinations);
-                last_send = now;
-            }
+            // A lost datagram costs a resend, not the session.
+            if (!barrier.complete() && now >= last_send + milliseconds(cluster_.network.resend_interval_ms)) resend();
+            stats.tick(stats_json);
         }
         if (stop_requested_) break;
 
@@ -208,25 +274,44 @@ int MasterNode::run() {
         events.write({{"event", "frame"}, {"frame", frame}, {"hash", hash}, {"sim_time_s", snap.sim_time_s},
                       {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}, {"glare", glare}});
         ++frames_done;
+        ++counters.frames;
         if (static_cast<int>(previous_reports.size()) < static_cast<int>(ids.size())) ++frames_incomplete;
 
         if (cluster_.frame_rate_hz > 0) {
-            const auto next = run_start + std::chrono::duration_cast<Clock::duration>(
-                                              std::chrono::duration<double>((frame + 1) / cluster_.frame_rate_hz));
+            const auto next = run_start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                              (frame - start_frame + 1) / cluster_.frame_rate_hz));
             while (Clock::now() < next) {
                 std::map<int, FrameReport> late;
                 auto left = std::chrono::duration_cast<milliseconds>(next - Clock::now()).count();
                 if (auto m = wire.receive(static_cast<int>(std::clamp<long long>(left, 0, 100))))
-                    if (handle(*m, frame, 0, late))  // joined between frames: it renders the current one
-                        wire.send(PacketType::Snapshot, frame, payload, destinations);
+                    if (handle(*m, frame, 0, late)) resend();  // joined between frames: it renders the current one
+                stats.tick(stats_json);
             }
         }
     }
 
-    // Tell the slaves to quit (several times: a lost datagram must not leave one running).
-    for (int i = 0; i < 5; ++i) {
-        wire.send(PacketType::Quit, frames_done, {}, destinations);
-        std::this_thread::sleep_for(milliseconds(20));
+    // Tell the slaves to quit, again every 50 ms until every live channel confirmed (at most 2 s):
+    // a lost datagram must not leave one running.
+    {
+        const uint64_t quit_frame = current_frame + 1;
+        const auto until = Clock::now() + milliseconds(2000);
+        std::map<int, FrameReport> unused;
+        auto all_acked = [&] {
+            for (int id : ids)
+                if (barrier.state(id) == ChannelState::Live && !quit_acked.count(id)) return false;
+            return true;
+        };
+        while (!all_acked() && Clock::now() < until) {
+            wire.send(PacketType::Quit, quit_frame, {}, destinations);
+            const auto round_end = Clock::now() + milliseconds(50);
+            while (Clock::now() < round_end)
+                if (auto m = wire.receive(static_cast<int>(std::max<long long>(
+                        0, std::chrono::duration_cast<milliseconds>(round_end - Clock::now()).count()))))
+                    handle(*m, current_frame, 0, unused);
+        }
+        for (int id : ids)
+            if (barrier.state(id) == ChannelState::Live && !quit_acked.count(id))
+                spdlog::warn("master: channel {} did not confirm quit", id);
     }
     const double secs = std::chrono::duration<double>(Clock::now() - run_start).count();
     spdlog::info("master: {} frames in {:.2f} s ({:.2f} frames/s), {} with missing channels; wire: {}", frames_done,
@@ -235,8 +320,10 @@ int MasterNode::run() {
         spdlog::info("master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "
                      "report)",
                      glare_sharing.counts().measured, glare_sharing.counts().analytic, glare_sharing.counts().missing);
+    stats.write_now(stats_json());
     events.write({{"event", "end"}, {"frames", frames_done}, {"seconds", secs},
-                  {"rejected", wire.counters().total_rejected()}, {"wire", wire.counters().summary()}});
+                  {"rejected", wire.counters().total_rejected()}, {"wire", wire.counters().summary()},
+                  {"stats", stats_json()}});
     return 0;
 }
 

@@ -21,6 +21,10 @@ namespace cupola {
 struct MasterOptions {
     std::optional<uint64_t> frames;  // stop after this many frames (none: run until stopped)
     std::string events_file;         // JSON lines: one object per frame and per channel event
+    std::string stats_file;          // the counters as JSON, rewritten every second (--stats)
+    // A master (re)started while slaves already rendered frames continues the show after the
+    // last frame every one of them rendered, so a master restart leaves no channel a gap.
+    bool resume = true;
 };
 
 // The snapshot for a frame as the show alone defines it: deterministic in the frame index, so

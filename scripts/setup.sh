@@ -15,6 +15,8 @@ PACKAGES=(
   liberfa-dev                                  # time scales and Earth rotation (ERFA)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   xplanet-images                               # Earth texture
+  iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
+  clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
 )
 
 missing=()

@@ -4,13 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <thread>
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "image/frame_image.hpp"
 #include "master_node.hpp"
+#include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
 #include "support/cluster_fixture.hpp"
+#include "support/wire_handshake.hpp"
 #include "util/child_process.hpp"
 #include "wire/reports.hpp"
 
@@ -30,14 +33,12 @@ TEST(SlaveInput, BadPacketsAreCountedAndTheSlaveGoesOn) {
     const SceneConfig scene = load_scene_config(cfg.scene_file);
     const ShowScript show = ShowScript::load(cfg.show_file, scene);
     const AuthKey key = load_key_file(cfg.key_file);
-    WireEndpoint master = open_master_endpoint(cfg, key);
+    WireEndpoint master = open_master_endpoint(cfg, key, new_session_nonce());
     ChildProcess slave({test::bin_path("cupola-slave"), "--config", config, "--channel", "solo", "--out", dir + "/solo",
                         "--idle-timeout", "60"},
                        dir + "/slave.log", {"DISPLAY", "WAYLAND_DISPLAY"});
 
-    auto hello = master.receive(60000);
-    ASSERT_TRUE(hello) << "no hello from the slave";
-    ASSERT_EQ(hello->message.type, PacketType::Hello);
+    ASSERT_EQ(test::welcome_one_slave(master, cfg, 60000), 0) << "the slave never completed the handshake";
     const auto to = snapshot_destinations(cfg);
 
     // Garbage and a packet signed with another key.
@@ -55,6 +56,8 @@ TEST(SlaveInput, BadPacketsAreCountedAndTheSlaveGoesOn) {
     Snapshot bad = good0;
     bad.bodies[0].id = 99;
     master.send(PacketType::Snapshot, 0, encode_snapshot(bad), to);
+    // (A slave that finds a newer snapshot queued renders only that one: give it time to read this.)
+    std::this_thread::sleep_for(300ms);
     // Then a good frame 1.
     const Snapshot good1 = make_frame_snapshot(cfg, scene, show, 1);
     const auto payload1 = encode_snapshot(good1);
@@ -71,6 +74,7 @@ TEST(SlaveInput, BadPacketsAreCountedAndTheSlaveGoesOn) {
     EXPECT_EQ(report->frame, 1u);
     EXPECT_EQ(report->snapshot_hash, snapshot_hash(payload1));
     EXPECT_GE(report->packets_rejected, 3u);  // junk + forged + the snapshot with a bad body id
+    master.send(PacketType::Quit, 1, {}, to);
     master.send(PacketType::Quit, 1, {}, to);
     auto rc = slave.wait_for(30s);
     ASSERT_TRUE(rc.has_value());

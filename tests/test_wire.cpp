@@ -11,8 +11,10 @@
 #include <bit>
 #include <sodium.h>
 
+#include "net/key_file.hpp"
 #include "net/udp_socket.hpp"
 #include "net/wire_endpoint.hpp"
+#include "support/wire_handshake.hpp"
 #include "wire/byte_io.hpp"
 #include "wire/packet.hpp"
 #include "wire/reassembler.hpp"
@@ -161,7 +163,24 @@ TEST(Packet, SingleDatagramRoundTrip) {
     EXPECT_EQ(d[0][1], 0x55);  // 'U'
     EXPECT_EQ(d[0][4], kProtocolVersion);
     EXPECT_EQ(d[0][8], 77);
-    EXPECT_EQ(d[0][24], 42);
+    EXPECT_EQ(d[0][40], 42);  // frame, after sequence (20), session (24) and to_session (32)
+}
+
+TEST(Packet, SessionsTravelInTheSignedHeader) {
+    PacketCodec codec(77, key_of(1), 0x1122334455667788ull);
+    uint32_t seq = 0;
+    auto d = codec.encode(PacketType::Hello, 3, 0, {1, 2}, 1400, &seq, 0x0A0B0C0D0E0F1011ull)[0];
+    auto r = codec.decode(d.data(), d.size());
+    ASSERT_TRUE(r.packet);
+    EXPECT_EQ(r.packet->header.session, 0x1122334455667788ull);
+    EXPECT_EQ(r.packet->header.to_session, 0x0A0B0C0D0E0F1011ull);
+    EXPECT_EQ(d[24], 0x88);
+    EXPECT_EQ(d[32], 0x11);
+    // Neither can be changed without the key.
+    d[24] ^= 1;
+    EXPECT_EQ(codec.decode(d.data(), d.size()).reason, RejectReason::BadAuth);
+    EXPECT_NE(new_session_nonce(), new_session_nonce());
+    EXPECT_NE(new_session_nonce(), 0u);
 }
 
 TEST(Packet, FragmentedSnapshotReassemblesInAnyOrder) {
@@ -238,7 +257,7 @@ TEST(Packet, BadDatagramsAreRejectedForTheRightReason) {
     EXPECT_EQ(reason(truncated), RejectReason::BadLength);
     EXPECT_EQ(reason(std::vector<uint8_t>(good.begin(), good.begin() + 20)), RejectReason::BadLength);
     auto version = good;
-    version[4] = 2;
+    version[4] = 1;  // a version-1 node on the same network
     EXPECT_EQ(reason(version), RejectReason::BadVersion);
     auto magic = good;
     magic[0] = 'X';
@@ -256,7 +275,7 @@ TEST(Packet, BadDatagramsAreRejectedForTheRightReason) {
     raw.clear();
     w.u32(kMagic); w.u16(kProtocolVersion); w.u8(1); w.u8(0); w.u32(9); w.u16(kMasterSender);
     w.u16(5); w.u16(3);  // fragment 5 of 3
-    w.u16(0); w.u32(0); w.u64(1); w.u32(4); w.u32(0); w.u32(4);
+    w.u16(0); w.u32(0); w.u64(7); w.u64(0); w.u64(1); w.u32(4); w.u32(0); w.u32(4);
     w.u32(0xDEADBEEF);
     AuthKey k = key_of(3);
     uint8_t tag[kTagSize];
@@ -304,16 +323,25 @@ TEST(Reports, RoundTripAndRefuseGarbage) {
     r.glare[0].visible_sr[7] = -1e-6f;
     EXPECT_THROW(decode_frame_report(encode_frame_report(r)), WireError);
 
-    HelloMessage h{7, 4242, 17};
+    HelloMessage h{7, 4242, true, 17};
     HelloMessage hd = decode_hello(encode_hello(h));
     EXPECT_EQ(hd.channel, 7);
     EXPECT_EQ(hd.process_id, 4242u);
+    EXPECT_TRUE(hd.has_frame);
     EXPECT_EQ(hd.last_frame, 17u);
     EXPECT_THROW(decode_hello({1, 2, 3}), WireError);
+    auto bad_flag = encode_hello(h);
+    bad_flag[6] = 2;
+    EXPECT_THROW(decode_hello(bad_flag), WireError);
+    const WelcomeMessage w = decode_welcome(encode_welcome({3, 99}));
+    EXPECT_EQ(w.channel, 3);
+    EXPECT_EQ(w.frame, 99u);
+    EXPECT_THROW(decode_welcome({1}), WireError);
 }
 
 TEST(KeyFile, ReadsHexAndNamesBadFiles) {
     const std::string dir = std::string(CUPOLA_TEST_TMP) + "/keyfile";
+    std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     {
         std::ofstream(dir + "/good.key") << "00112233445566778899aabbccddeeff\n00112233445566778899AABBCCDDEEFF\n";
@@ -331,6 +359,28 @@ TEST(KeyFile, ReadsHexAndNamesBadFiles) {
         } catch (const std::runtime_error& e) {
             EXPECT_NE(std::string(e.what()).find(f + 1), std::string::npos) << e.what();
         }
+    }
+}
+
+TEST(KeyFile, AKeyEveryUserCanReadIsAWarningOrInStrictModeAnError) {
+    const std::string dir = std::string(CUPOLA_TEST_TMP) + "/keyfile_mode";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string path = dir + "/cluster.key";
+    std::ofstream(path) << std::string(64, 'a') << "\n";
+    namespace fs = std::filesystem;
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::replace);
+    EXPECT_NO_THROW(load_key_file(path, true));
+    fs::permissions(path, fs::perms::owner_read | fs::perms::group_read, fs::perm_options::replace);
+    EXPECT_NO_THROW(load_key_file(path, true));  // a group of render nodes may share it
+    fs::permissions(path, fs::perms::owner_read | fs::perms::others_read, fs::perm_options::replace);
+    EXPECT_NO_THROW(load_key_file(path, false));  // warning only
+    try {
+        load_key_file(path, true);
+        FAIL() << "a world-readable key was accepted in strict mode";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("mode 404"), std::string::npos) << e.what();
     }
 }
 
@@ -359,8 +409,9 @@ void expect_every_slave_receives(Transport t, uint16_t port) {
     ClusterConfig cfg = socket_config(t, port, 2);
     const AuthKey key = key_of(5);
     std::vector<WireEndpoint> slaves;
-    for (const auto& ch : cfg.channels) slaves.push_back(open_slave_endpoint(cfg, ch, key));
-    WireEndpoint master = open_master_endpoint(cfg, key);
+    for (const auto& ch : cfg.channels) slaves.push_back(open_slave_endpoint(cfg, ch, key, new_session_nonce()));
+    WireEndpoint master = open_master_endpoint(cfg, key, new_session_nonce());
+    ASSERT_TRUE(test::handshake(master, slaves, cfg));
     const Snapshot s = sample_snapshot(40);  // ~3 KB: several fragments at 600 bytes
     master.send(PacketType::Snapshot, s.frame, encode_snapshot(s), snapshot_destinations(cfg));
     for (auto& sl : slaves) {
@@ -373,7 +424,8 @@ void expect_every_slave_receives(Transport t, uint16_t port) {
         rep.channel = static_cast<uint16_t>(&sl - slaves.data());
         rep.frame = s.frame;
         rep.snapshot_hash = snapshot_hash(m->message.payload);
-        sl.send(PacketType::FrameDone, rep.frame, encode_frame_report(rep), {master_report_address(cfg)});
+        sl.send(PacketType::FrameDone, rep.frame, encode_frame_report(rep), {master_report_address(cfg)},
+                master.session());
     }
     int reports = 0;
     while (auto m = master.receive(1000)) {
@@ -391,12 +443,18 @@ TEST(Sockets, UnicastReachesEverySlave) { expect_every_slave_receives(Transport:
 TEST(Sockets, BadDatagramsAreDroppedAndCountedNotFatal) {
     ClusterConfig cfg = socket_config(Transport::Unicast, 47770, 1);
     const AuthKey key = key_of(6);
-    WireEndpoint slave = open_slave_endpoint(cfg, cfg.channels[0], key);
+    WireEndpoint slave = open_slave_endpoint(cfg, cfg.channels[0], key, new_session_nonce());
     UdpSocket attacker;
     const sockaddr_in to = parse_host_port(cfg.channels[0].unicast_address);
-    PacketCodec good(cfg.cluster_id, key), wrong_key(cfg.cluster_id, key_of(7)), wrong_cluster(1, key);
+    const uint64_t master_session = new_session_nonce();
+    PacketCodec good(cfg.cluster_id, key, master_session), wrong_key(cfg.cluster_id, key_of(7), master_session),
+        wrong_cluster(1, key, master_session);
     uint32_t seq = 0;
     auto send = [&](const std::vector<uint8_t>& d) { attacker.send_to(to, d.data(), d.size()); };
+    // The master's welcome establishes its session at the slave.
+    send(good.encode(PacketType::Welcome, kMasterSender, 0, encode_welcome({0, 0}), 1400, &seq, slave.session())[0]);
+    auto w = slave.receive(2000);
+    ASSERT_TRUE(w && w->opened);
     const std::vector<uint8_t> msg = encode_snapshot(sample_snapshot(1));
     send({'n', 'o', 'p', 'e'});                                                               // bad magic
     auto g = good.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0];

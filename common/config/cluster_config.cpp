@@ -74,6 +74,7 @@ NetworkConfig read_network(const JsonReader& r) {
     n.channel_timeout_ms = static_cast<int>(r.integer_in("channel_timeout_ms", 10, 600000, n.channel_timeout_ms));
     n.resend_interval_ms = static_cast<int>(r.integer_in("resend_interval_ms", 1, 60000, n.resend_interval_ms));
     n.hello_wait_ms = static_cast<int>(r.integer_in("hello_wait_ms", 0, 600000, n.hello_wait_ms));
+    n.strict_key_permissions = r.boolean("strict_key_permissions", n.strict_key_permissions);
     r.reject_unknown_keys();
     return n;
 }

@@ -25,6 +25,7 @@ struct NetworkConfig {
     int channel_timeout_ms = 2000;                     // silent channel is dropped after this
     int resend_interval_ms = 100;                      // snapshot re-sent while the barrier waits
     int hello_wait_ms = 15000;                         // master waits this long for all channels at start
+    bool strict_key_permissions = false;               // a key file open to every user: error, not warning
 };
 
 struct DomeConfig {

@@ -4,6 +4,8 @@
 
 #include <sstream>
 
+#include "util/monotonic_clock.hpp"
+
 namespace cupola {
 
 uint64_t WireCounters::total_rejected() const {
@@ -12,10 +14,21 @@ uint64_t WireCounters::total_rejected() const {
     return t;
 }
 
+uint64_t WireCounters::foreign() const {
+    return rejected_for(RejectReason::BadMagic) + rejected_for(RejectReason::BadVersion) +
+           rejected_for(RejectReason::WrongCluster);
+}
+
+uint64_t WireCounters::malformed() const {
+    return rejected_for(RejectReason::BadLength) + rejected_for(RejectReason::BadType) +
+           rejected_for(RejectReason::BadFragment);
+}
+
 std::string WireCounters::summary() const {
     std::ostringstream os;
     os << "received " << datagrams_received << " datagrams / " << messages_received << " messages, sent "
-       << datagrams_sent << ", rejected " << total_rejected();
+       << datagrams_sent << ", duplicates " << duplicates << ", reordered " << reordered << ", incomplete "
+       << incomplete << ", rejected " << total_rejected();
     bool first = true;
     for (size_t i = 0; i < rejected.size(); ++i) {
         if (!rejected[i]) continue;
@@ -26,13 +39,41 @@ std::string WireCounters::summary() const {
     return os.str();
 }
 
-WireEndpoint::WireEndpoint(UdpSocket socket, PacketCodec codec, uint16_t self, size_t max_datagram,
-                           std::string log_name)
-    : socket_(std::move(socket)), codec_(codec), self_(self), max_datagram_(max_datagram), log_name_(std::move(log_name)) {}
+nlohmann::json WireCounters::to_json() const {
+    nlohmann::json by_reason = nlohmann::json::object();
+    for (size_t i = 0; i < rejected.size(); ++i)
+        by_reason[reject_reason_name(static_cast<RejectReason>(i))] = rejected[i];
+    return {{"datagrams_received", datagrams_received},
+            {"datagrams_sent", datagrams_sent},
+            {"messages_received", messages_received},
+            {"duplicates", duplicates},
+            {"reordered", reordered},
+            {"incomplete", incomplete},
+            {"sessions_opened", sessions_opened},
+            {"unverified", unverified},
+            {"ignored", ignored},
+            {"forged", forged()},
+            {"foreign", foreign()},
+            {"malformed", malformed()},
+            {"replayed", rejected_for(RejectReason::Replayed)},
+            {"stale_session", rejected_for(RejectReason::StaleSession)},
+            {"unknown_session", rejected_for(RejectReason::UnknownSession)},
+            {"rejected", total_rejected()},
+            {"rejected_by_reason", by_reason}};
+}
+
+WireEndpoint::WireEndpoint(UdpSocket socket, PacketCodec codec, SessionGuard::OpenPolicy policy, uint16_t self,
+                           size_t max_datagram, std::string log_name)
+    : socket_(std::move(socket)),
+      codec_(codec),
+      guard_(codec.session(), std::move(policy)),
+      self_(self),
+      max_datagram_(max_datagram),
+      log_name_(std::move(log_name)) {}
 
 void WireEndpoint::send(PacketType type, uint64_t frame, const std::vector<uint8_t>& payload,
-                        const std::vector<sockaddr_in>& destinations) {
-    auto datagrams = codec_.encode(type, self_, frame, payload, max_datagram_, &sequence_);
+                        const std::vector<sockaddr_in>& destinations, uint64_t to_session) {
+    auto datagrams = codec_.encode(type, self_, frame, payload, max_datagram_, &sequence_, to_session);
     for (const auto& to : destinations)
         for (const auto& d : datagrams) {
             socket_.send_to(to, d.data(), d.size());
@@ -61,12 +102,58 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
             count_reject(r.reason, d->from);
             continue;
         }
+        const PacketHeader& h = r.packet->header;
+        const GuardVerdict g = guard_.check(h, monotonic_ns());
+        switch (g.kind) {
+            case GuardVerdict::Rejected: count_reject(g.reason, d->from); continue;
+            case GuardVerdict::Duplicate: ++counters_.duplicates; continue;
+            case GuardVerdict::Ignored: ++counters_.ignored; continue;
+            case GuardVerdict::Unverified: {
+                // Authentic, but its session is not established: pass it up for the handshake only.
+                ++counters_.unverified;
+                ReceivedMessage um;
+                um.message = Message{h.type, h.sender, h.frame, std::vector<uint8_t>{}, h.session};
+                if (h.fragment_count == 1) um.message.payload = std::move(r.packet->payload);
+                um.from = d->from;
+                um.verified = false;
+                um.to_session = h.to_session;
+                return um;
+            }
+            case GuardVerdict::Accept:
+            case GuardVerdict::Opened: break;
+        }
+        if (g.reordered) ++counters_.reordered;
+        const bool opened = g.kind == GuardVerdict::Opened;
+        const uint64_t to_session = h.to_session;
+        if (opened) {
+            ++counters_.sessions_opened;
+            spdlog::info("{}: {} {} established session {:016x} from {}", log_name_,
+                         h.sender == kMasterSender ? "master" : "channel", h.sender == kMasterSender ? "" : std::to_string(h.sender),
+                         h.session, to_string(d->from));
+        }
         const uint64_t inconsistent_before = reassembler_.inconsistent();
+        const uint64_t incomplete_before = reassembler_.incomplete_dropped();
         auto m = reassembler_.add(std::move(*r.packet));
         if (reassembler_.inconsistent() != inconsistent_before) count_reject(RejectReason::BadFragment, d->from);
+        counters_.incomplete += reassembler_.incomplete_dropped() - incomplete_before;
         if (m) {
             ++counters_.messages_received;
-            return ReceivedMessage{std::move(*m), d->from};
+            ReceivedMessage rm;
+            rm.message = std::move(*m);
+            rm.from = d->from;
+            rm.opened = opened;
+            rm.to_session = to_session;
+            return rm;
+        }
+        if (opened) {
+            // The session is established even though this datagram did not complete a message.
+            ReceivedMessage rm;
+            rm.message = Message{h.type, h.sender, h.frame, std::vector<uint8_t>{}, h.session};
+            rm.from = d->from;
+            rm.opened = true;
+            rm.verified = false;
+            rm.to_session = to_session;
+            return rm;
         }
     }
 }
@@ -89,17 +176,23 @@ sockaddr_in master_report_address(const ClusterConfig& cfg) {
     return make_address(cfg.network.master_address, cfg.network.report_port);
 }
 
-WireEndpoint open_master_endpoint(const ClusterConfig& cfg, const AuthKey& key) {
+WireEndpoint open_master_endpoint(const ClusterConfig& cfg, const AuthKey& key, uint64_t session) {
     UdpSocket s;
     s.bind(master_report_address(cfg));
     s.set_receive_buffer(1 << 20);
     if (cfg.network.transport == Transport::Multicast) s.set_multicast_sender(cfg.network.interface_address);
     if (cfg.network.transport == Transport::Broadcast) s.enable_broadcast();
-    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key), kMasterSender,
+    auto policy = [session](const PacketHeader& h) {
+        if (h.sender == kMasterSender) return SessionOpen::Ignore;  // our own multicast, looped back
+        if (h.type != PacketType::Hello) return SessionOpen::Reject;
+        return h.to_session == session ? SessionOpen::Open : SessionOpen::Unverified;
+    };
+    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), policy, kMasterSender,
                         static_cast<size_t>(cfg.network.max_datagram_bytes), "master");
 }
 
-WireEndpoint open_slave_endpoint(const ClusterConfig& cfg, const ChannelConfig& channel, const AuthKey& key) {
+WireEndpoint open_slave_endpoint(const ClusterConfig& cfg, const ChannelConfig& channel, const AuthKey& key,
+                                 uint64_t session) {
     const auto& n = cfg.network;
     UdpSocket s;
     s.set_receive_buffer(4 << 20);
@@ -117,8 +210,14 @@ WireEndpoint open_slave_endpoint(const ClusterConfig& cfg, const ChannelConfig& 
             s.bind(parse_host_port(channel.unicast_address));
             break;
     }
-    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key), static_cast<uint16_t>(channel.id),
-                        static_cast<size_t>(n.max_datagram_bytes), "slave " + channel.name);
+    auto policy = [session](const PacketHeader& h) {
+        if (h.sender != kMasterSender) return SessionOpen::Ignore;  // another node's traffic
+        if (h.type == PacketType::Welcome && h.to_session == session) return SessionOpen::Open;
+        return SessionOpen::Unverified;
+    };
+    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), policy,
+                        static_cast<uint16_t>(channel.id), static_cast<size_t>(n.max_datagram_bytes),
+                        "slave " + channel.name);
 }
 
 }  // namespace cupola

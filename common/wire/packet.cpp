@@ -3,9 +3,6 @@
 #include <sodium.h>
 
 #include <algorithm>
-#include <cctype>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "wire/byte_io.hpp"
@@ -24,9 +21,11 @@ bool known_type(uint8_t t) {
     switch (static_cast<PacketType>(t)) {
         case PacketType::Snapshot:
         case PacketType::Quit:
+        case PacketType::Welcome:
         case PacketType::Hello:
         case PacketType::Heartbeat:
         case PacketType::FrameDone:
+        case PacketType::QuitAck:
             return true;
     }
     return false;
@@ -40,6 +39,8 @@ const char* packet_type_name(PacketType t) {
         case PacketType::Hello: return "hello";
         case PacketType::Heartbeat: return "heartbeat";
         case PacketType::FrameDone: return "frame-done";
+        case PacketType::Welcome: return "welcome";
+        case PacketType::QuitAck: return "quit-ack";
     }
     return "unknown";
 }
@@ -53,33 +54,24 @@ const char* reject_reason_name(RejectReason r) {
         case RejectReason::BadAuth: return "authentication failed";
         case RejectReason::BadType: return "unknown packet type";
         case RejectReason::BadFragment: return "bad fragment";
+        case RejectReason::Replayed: return "replayed";
+        case RejectReason::StaleSession: return "stale session";
+        case RejectReason::UnknownSession: return "unknown session";
         case RejectReason::Count: break;
     }
     return "?";
 }
 
-AuthKey load_key_file(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open key file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    std::string hex;
-    for (char c : ss.str())
-        if (!std::isspace(static_cast<unsigned char>(c))) hex.push_back(c);
-    if (hex.size() != 64)
-        throw std::runtime_error(path + ": key file must hold 64 hexadecimal digits (32 bytes), found " +
-                                 std::to_string(hex.size()) + " characters");
-    AuthKey key{};
-    size_t bin_len = 0;
-    if (sodium_hex2bin(key.data(), key.size(), hex.c_str(), hex.size(), nullptr, &bin_len, nullptr) != 0 ||
-        bin_len != key.size())
-        throw std::runtime_error(path + ": key file holds characters that are not hexadecimal digits");
-    return key;
+uint64_t new_session_nonce() {
+    ensure_sodium();
+    uint64_t n = 0;
+    while (n == 0) randombytes_buf(&n, sizeof n);
+    return n;
 }
 
 std::vector<std::vector<uint8_t>> PacketCodec::encode(PacketType type, uint16_t sender, uint64_t frame,
                                                       const std::vector<uint8_t>& message, size_t max_datagram,
-                                                      uint32_t* sequence) const {
+                                                      uint32_t* sequence, uint64_t to_session) const {
     ensure_sodium();
     if (max_datagram < kHeaderSize + kTagSize + 16) throw std::invalid_argument("max_datagram too small");
     if (message.size() > kMaxMessageLength) throw std::invalid_argument("message too long");
@@ -104,6 +96,8 @@ std::vector<std::vector<uint8_t>> PacketCodec::encode(PacketType type, uint16_t 
         w.u16(static_cast<uint16_t>(count));
         w.u16(0);
         w.u32((*sequence)++);
+        w.u64(session_);
+        w.u64(to_session);
         w.u64(frame);
         w.u32(static_cast<uint32_t>(message.size()));
         w.u32(static_cast<uint32_t>(off));
@@ -140,6 +134,8 @@ DecodeResult PacketCodec::decode(const uint8_t* data, size_t size) const {
     h.fragment_count = r.u16("fragment_count");
     r.u16("reserved");
     h.sequence = r.u32("sequence");
+    h.session = r.u64("session");
+    h.to_session = r.u64("to_session");
     h.frame = r.u64("frame");
     h.message_length = r.u32("message_length");
     h.fragment_offset = r.u32("fragment_offset");

@@ -1,5 +1,5 @@
 #pragma once
-// One UDP datagram of the Cupola wire protocol (version 1). All fields little-endian.
+// One UDP datagram of the Cupola wire protocol (version 2). All fields little-endian.
 //
 //  offset size field
 //   0      4   magic            0x4C505543 ("CUPL" in byte order)
@@ -11,13 +11,15 @@
 //  14      2   fragment_index   0-based
 //  16      2   fragment_count   >= 1
 //  18      2   reserved         0
-//  20      4   sequence         per sender, +1 per datagram
-//  24      8   frame            frame number the message belongs to
-//  32      4   message_length   length of the whole (reassembled) message payload
-//  36      4   fragment_offset  where this fragment's payload starts in the message
-//  40      4   payload_length   bytes of payload in this datagram
-//  44      n   payload
-//  44+n   32   tag              HMAC-SHA256 (libsodium) over bytes [0, 44+n), shared key file
+//  20      4   sequence         per sender session, +1 per datagram (replay window)
+//  24      8   session          random nonce of the sending process, new at every start
+//  32      8   to_session       the addressee's session this answers (0: anyone; see session_guard)
+//  40      8   frame            frame number the message belongs to
+//  48      4   message_length   length of the whole (reassembled) message payload
+//  52      4   fragment_offset  where this fragment's payload starts in the message
+//  56      4   payload_length   bytes of payload in this datagram
+//  60      n   payload
+//  60+n   32   tag              HMAC-SHA256 (libsodium) over bytes [0, 60+n), shared key file
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -27,25 +29,27 @@
 namespace cupola {
 
 constexpr uint32_t kMagic = 0x4C505543u;
-constexpr uint16_t kProtocolVersion = 1;
+constexpr uint16_t kProtocolVersion = 2;
 constexpr uint16_t kMasterSender = 0xFFFF;
-constexpr size_t kHeaderSize = 44;
+constexpr size_t kHeaderSize = 60;
 constexpr size_t kTagSize = 32;
 constexpr size_t kMaxMessageLength = 16u << 20;  // 16 MiB
 
 enum class PacketType : uint8_t {
     Snapshot = 1,   // master -> slaves: Snapshot (possibly fragmented)
     Quit = 2,       // master -> slaves: stop after this frame
+    Welcome = 3,    // master -> one slave (to_session): proves the master's session is live now
     Hello = 16,     // slave -> master: channel joins or rejoins
     Heartbeat = 17, // slave -> master: still alive (while idle)
     FrameDone = 18, // slave -> master: FrameReport
+    QuitAck = 19,   // slave -> master: quit received
 };
 const char* packet_type_name(PacketType t);
 
 using AuthKey = std::array<uint8_t, 32>;
 
-// Reads a key file: 64 hexadecimal digits (whitespace ignored). Throws naming the file.
-AuthKey load_key_file(const std::string& path);
+// A fresh random 64-bit session nonce (libsodium's CSPRNG), never 0.
+uint64_t new_session_nonce();
 
 struct PacketHeader {
     uint16_t version = kProtocolVersion;
@@ -56,6 +60,8 @@ struct PacketHeader {
     uint16_t fragment_index = 0;
     uint16_t fragment_count = 1;
     uint32_t sequence = 0;
+    uint64_t session = 0;
+    uint64_t to_session = 0;
     uint64_t frame = 0;
     uint32_t message_length = 0;
     uint32_t fragment_offset = 0;
@@ -68,7 +74,15 @@ struct Packet {
 };
 
 // Why a datagram was refused; each reason has its own counter.
-enum class RejectReason { BadMagic, BadVersion, WrongCluster, BadLength, BadAuth, BadType, BadFragment, Count };
+// The first seven come from decoding one datagram; the last three from the session guard
+// (common/net/session_guard.hpp), which sees the sender's session and sequence.
+enum class RejectReason {
+    BadMagic, BadVersion, WrongCluster, BadLength, BadAuth, BadType, BadFragment,
+    Replayed,        // a sequence number of the sender's session already seen (long ago) or too old
+    StaleSession,    // from, or addressed to, a session that has ended (a restart happened since)
+    UnknownSession,  // from a session not (yet) established by the Hello/Welcome handshake
+    Count
+};
 const char* reject_reason_name(RejectReason r);
 
 struct DecodeResult {
@@ -78,22 +92,26 @@ struct DecodeResult {
 
 class PacketCodec {
 public:
-    PacketCodec(uint32_t cluster_id, const AuthKey& key) : cluster_id_(cluster_id), key_(key) {}
+    // session: this process's nonce, written into every datagram it encodes.
+    PacketCodec(uint32_t cluster_id, const AuthKey& key, uint64_t session = 0)
+        : cluster_id_(cluster_id), key_(key), session_(session) {}
 
     // Splits a message into datagrams of at most max_datagram bytes (header + payload + tag).
     // Sequence numbers are taken from *sequence and advanced.
     std::vector<std::vector<uint8_t>> encode(PacketType type, uint16_t sender, uint64_t frame,
                                              const std::vector<uint8_t>& message, size_t max_datagram,
-                                             uint32_t* sequence) const;
+                                             uint32_t* sequence, uint64_t to_session = 0) const;
 
     // Verifies magic, version, cluster, lengths and the tag (in constant time), in that order.
     DecodeResult decode(const uint8_t* data, size_t size) const;
 
     uint32_t cluster_id() const { return cluster_id_; }
+    uint64_t session() const { return session_; }
 
 private:
     uint32_t cluster_id_;
     AuthKey key_;
+    uint64_t session_;
 };
 
 }  // namespace cupola

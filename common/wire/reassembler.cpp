@@ -7,9 +7,9 @@ namespace cupola {
 
 std::optional<Message> Reassembler::add(Packet&& p) {
     const auto& h = p.header;
-    if (h.fragment_count == 1) return Message{h.type, h.sender, h.frame, std::move(p.payload)};
+    if (h.fragment_count == 1) return Message{h.type, h.sender, h.frame, std::move(p.payload), h.session};
 
-    Key key{h.sender, static_cast<uint8_t>(h.type), h.frame};
+    Key key{h.sender, h.session, static_cast<uint8_t>(h.type), h.frame};
     auto it = pending_.find(key);
     if (it == pending_.end()) {
         while (pending_.size() >= max_pending_) {
@@ -39,7 +39,7 @@ std::optional<Message> Reassembler::add(Packet&& p) {
     if (!p.payload.empty()) std::memcpy(m.data.data() + h.fragment_offset, p.payload.data(), p.payload.size());
     m.have[h.fragment_index] = true;
     if (++m.received < m.count) return std::nullopt;
-    Message done{h.type, h.sender, h.frame, std::move(m.data)};
+    Message done{h.type, h.sender, h.frame, std::move(m.data), h.session};
     pending_.erase(it);
     return done;
 }

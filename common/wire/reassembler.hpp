@@ -1,5 +1,6 @@
 #pragma once
-// Puts fragmented messages back together. Keyed by (sender, type, frame); a message whose
+// Puts fragmented messages back together. Keyed by (sender, session, type, frame), so the
+// fragments of a restarted sender's message never mix with its old ones; a message whose
 // fragments do not all arrive is evicted (and counted) once `max_pending` newer messages exist.
 #include <cstdint>
 #include <map>
@@ -16,6 +17,7 @@ struct Message {
     uint16_t sender;
     uint64_t frame;
     std::vector<uint8_t> payload;
+    uint64_t session = 0;  // the sender's session nonce
 };
 
 class Reassembler {
@@ -39,7 +41,7 @@ private:
         uint16_t received = 0;
         uint64_t arrival = 0;
     };
-    using Key = std::tuple<uint16_t, uint8_t, uint64_t>;
+    using Key = std::tuple<uint16_t, uint64_t, uint8_t, uint64_t>;
     std::map<Key, Pending> pending_;
     size_t max_pending_;
     uint64_t arrivals_ = 0;

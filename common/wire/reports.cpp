@@ -12,8 +12,26 @@ std::vector<uint8_t> encode_hello(const HelloMessage& m) {
     ByteWriter w(out);
     w.u16(m.channel);
     w.u32(m.process_id);
+    w.u8(m.has_frame ? 1 : 0);
     w.u64(m.last_frame);
     return out;
+}
+
+std::vector<uint8_t> encode_welcome(const WelcomeMessage& m) {
+    std::vector<uint8_t> out;
+    ByteWriter w(out);
+    w.u16(m.channel);
+    w.u64(m.frame);
+    return out;
+}
+
+WelcomeMessage decode_welcome(const std::vector<uint8_t>& p) {
+    ByteReader r(p.data(), p.size());
+    WelcomeMessage m;
+    m.channel = r.u16("welcome.channel");
+    m.frame = r.u64("welcome.frame");
+    if (r.remaining()) throw WireError("unexpected bytes after welcome");
+    return m;
 }
 
 HelloMessage decode_hello(const std::vector<uint8_t>& p) {
@@ -21,6 +39,9 @@ HelloMessage decode_hello(const std::vector<uint8_t>& p) {
     HelloMessage m;
     m.channel = r.u16("hello.channel");
     m.process_id = r.u32("hello.process_id");
+    const uint8_t has = r.u8("hello.has_frame");
+    if (has > 1) throw WireError("hello.has_frame must be 0 or 1");
+    m.has_frame = has == 1;
     m.last_frame = r.u64("hello.last_frame");
     if (r.remaining()) throw WireError("unexpected bytes after hello");
     return m;

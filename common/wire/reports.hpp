@@ -1,15 +1,24 @@
 #pragma once
-// Slave -> master message bodies.
+// Control message bodies: slave -> master (hello, heartbeat, quit-ack, frame reports) and the
+// master's welcome.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace cupola {
 
+// Hello, Heartbeat and QuitAck carry this.
 struct HelloMessage {
     uint16_t channel = 0;
-    uint32_t process_id = 0;   // tells a restarted slave from the old one
-    uint64_t last_frame = 0;   // last frame this process rendered (0 if none)
+    uint32_t process_id = 0;   // for the operator's log
+    bool has_frame = false;    // this process has rendered a frame...
+    uint64_t last_frame = 0;   // ...and this was the last (a restarted master resumes after it)
+};
+
+// master -> one slave process (addressed by to_session in the header).
+struct WelcomeMessage {
+    uint16_t channel = 0;
+    uint64_t frame = 0;  // the frame the master is at
 };
 
 // One channel's occlusion-query result for one glare source: the solid angle (steradian) of the
@@ -46,6 +55,8 @@ struct FrameReport {
 
 std::vector<uint8_t> encode_hello(const HelloMessage& m);
 HelloMessage decode_hello(const std::vector<uint8_t>& payload);
+std::vector<uint8_t> encode_welcome(const WelcomeMessage& m);
+WelcomeMessage decode_welcome(const std::vector<uint8_t>& payload);
 std::vector<uint8_t> encode_frame_report(const FrameReport& r);
 FrameReport decode_frame_report(const std::vector<uint8_t>& payload);
 
