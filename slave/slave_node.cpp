@@ -87,12 +87,15 @@ int SlaveNode::run() {
 
     while (!stop_requested_) {
         const auto now = Clock::now();
-        // Say hello until we are welcomed and snapshots flow, to a master we do not know yet (to
-        // session 0, asking for a welcome), and whenever snapshots stop (we may have been dropped).
+        // Say hello until we are welcomed and snapshots flow, and whenever snapshots stop (we may
+        // have been dropped). To session 0 — "whoever is master, welcome me" — while a master we do
+        // not know is sending, and after a second without snapshots: a restarted master rejects
+        // hellos addressed to its predecessor and sends nothing until channels join.
         const bool joining = master_session() == 0 || need_welcome || !rendered_in_session;
+        const bool silent = now - last_snapshot > milliseconds(1000);
         if ((joining && now - last_hello > milliseconds(100)) ||
             (now - last_snapshot > milliseconds(500) && now - last_hello > milliseconds(500)))
-            send_hello(need_welcome ? 0 : master_session());
+            send_hello(need_welcome || silent ? 0 : master_session());
         if (now - last_snapshot > std::chrono::seconds(options_.idle_timeout_s)) {
             spdlog::error("slave {}: no snapshot for {} s; is the master running? exiting", channel_.name,
                           options_.idle_timeout_s);

@@ -98,13 +98,17 @@ void UdpSocket::set_receive_buffer(int bytes) {
     if (setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes) != 0) fail("setsockopt(SO_RCVBUF)");
 }
 
-void UdpSocket::send_to(const sockaddr_in& to, const uint8_t* data, size_t size) {
+bool UdpSocket::send_to(const sockaddr_in& to, const uint8_t* data, size_t size) {
     for (;;) {
         ssize_t n = ::sendto(fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
-        if (n >= 0) return;
+        if (n >= 0) return true;
         if (errno == EINTR) continue;
-        // A peer that is gone (ECONNREFUSED from an earlier ICMP) must not stop the sender.
-        if (errno == ECONNREFUSED || errno == ENOBUFS || errno == EAGAIN) return;
+        // The network, not the program: a peer that is gone (ECONNREFUSED from an earlier ICMP), a
+        // full queue, a link that is down (no route while it is), a firewall. The datagram is lost
+        // like any other; the protocol recovers. The caller counts it.
+        if (errno == ECONNREFUSED || errno == ENOBUFS || errno == EAGAIN || errno == ENETUNREACH ||
+            errno == EHOSTUNREACH || errno == ENETDOWN || errno == EHOSTDOWN || errno == EPERM)
+            return false;
         fail("sendto(" + to_string(to) + ")");
     }
 }

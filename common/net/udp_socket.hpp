@@ -30,7 +30,9 @@ public:
     void enable_broadcast();
     void set_receive_buffer(int bytes);
 
-    void send_to(const sockaddr_in& to, const uint8_t* data, size_t size);
+    // false when the network refused the datagram for now (link down, no route, full queue,
+    // firewall): lost like any datagram. Throws for errors of the program (bad socket, too large).
+    bool send_to(const sockaddr_in& to, const uint8_t* data, size_t size);
 
     struct Datagram {
         std::vector<uint8_t> data;

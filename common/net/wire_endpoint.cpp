@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
+#include <cstring>
 #include <sstream>
 
 #include "util/monotonic_clock.hpp"
@@ -27,7 +29,7 @@ uint64_t WireCounters::malformed() const {
 std::string WireCounters::summary() const {
     std::ostringstream os;
     os << "received " << datagrams_received << " datagrams / " << messages_received << " messages, sent "
-       << datagrams_sent << ", duplicates " << duplicates << ", reordered " << reordered << ", incomplete "
+       << datagrams_sent << " (" << send_failures << " failed), duplicates " << duplicates << ", reordered " << reordered << ", incomplete "
        << incomplete << ", rejected " << total_rejected();
     bool first = true;
     for (size_t i = 0; i < rejected.size(); ++i) {
@@ -49,6 +51,7 @@ nlohmann::json WireCounters::to_json() const {
             {"duplicates", duplicates},
             {"reordered", reordered},
             {"incomplete", incomplete},
+            {"send_failures", send_failures},
             {"sessions_opened", sessions_opened},
             {"unverified", unverified},
             {"ignored", ignored},
@@ -76,8 +79,14 @@ void WireEndpoint::send(PacketType type, uint64_t frame, const std::vector<uint8
     auto datagrams = codec_.encode(type, self_, frame, payload, max_datagram_, &sequence_, to_session);
     for (const auto& to : destinations)
         for (const auto& d : datagrams) {
-            socket_.send_to(to, d.data(), d.size());
-            ++counters_.datagrams_sent;
+            if (socket_.send_to(to, d.data(), d.size())) {
+                ++counters_.datagrams_sent;
+                continue;
+            }
+            const int err = errno;
+            if (++counters_.send_failures <= 3 || counters_.send_failures % 100 == 0)
+                spdlog::warn("{}: could not send to {}: {} ({} datagrams so far); the protocol will retry",
+                             log_name_, to_string(to), std::strerror(err), counters_.send_failures);
         }
 }
 

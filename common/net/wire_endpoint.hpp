@@ -26,6 +26,7 @@ struct WireCounters {
     uint64_t duplicates = 0;      // a datagram repeated by the network (dropped)
     uint64_t reordered = 0;       // accepted after a later datagram of the same sender
     uint64_t incomplete = 0;      // messages given up with fragments missing
+    uint64_t send_failures = 0;   // datagrams the network refused to take (link down, no route)
     uint64_t sessions_opened = 0; // peers (re)established through the handshake
     uint64_t unverified = 0;      // authentic datagrams of a session not established yet
     uint64_t ignored = 0;         // welcomes meant for other processes

@@ -22,7 +22,7 @@ struct Message {
 
 class Reassembler {
 public:
-    explicit Reassembler(size_t max_pending = 8) : max_pending_(max_pending) {}
+    explicit Reassembler(size_t max_pending = 8) : max_pending_(max_pending > 0 ? max_pending : 1) {}
 
     // Returns the whole message when this packet completes it. Inconsistent fragments (a length
     // or count that disagrees with earlier fragments of the same message) are counted as bad.
