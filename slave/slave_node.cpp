@@ -32,6 +32,7 @@ SlaveNode::SlaveNode(ClusterConfig cluster, int channel_id, SlaveOptions options
 }
 
 int SlaveNode::run() {
+    const auto started = Clock::now();
     const AuthKey key = load_key_file(cluster_.key_file, cluster_.network.strict_key_permissions);
     const SceneConfig scene = load_scene_config(cluster_.scene_file);
     EglContext gl(options_.egl_device);
@@ -40,6 +41,8 @@ int SlaveNode::run() {
     SceneRenderer renderer(cluster_, channel_, scene);
     const uint64_t session = new_session_nonce();
     WireEndpoint wire = open_slave_endpoint(cluster_, channel_, key, session);
+    spdlog::info("slave {}: ready to join {:.0f} ms after start (session {:016x})", channel_.name,
+                 std::chrono::duration<double, std::milli>(Clock::now() - started).count(), session);
     const sockaddr_in master = master_report_address(cluster_);
     AsyncFrameWriter writer(options_.out_dir, options_.formats);
     SlaveCounters counters;

@@ -1,6 +1,7 @@
 // Every config error names the file and the field; the shipped configs load.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "config/cluster_config.hpp"
@@ -212,4 +213,44 @@ TEST(Config, AtmosphereAndExposureErrorsAreNamed) {
     c["output"]["auto_exposure"]["min_exposure"] = 10.0;
     c["output"]["auto_exposure"]["max_exposure"] = 1.0;
     expect_error("auto_exposure_range", c, "output.auto_exposure.min_exposure", "max_exposure");
+}
+
+// A missing texture or star catalogue is a start-up error naming the file, the field and the
+// path, in the loader and in a real slave process (which must not render black frames instead).
+TEST(Config, MissingTextureOrCatalogueStopsTheStartWithAClearError) {
+    const std::string dir = test::scratch_dir("config/missing_files");
+    json s = json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
+    s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["bodies"][1]["texture"] = dir + "/no-such-earth.png";
+    test::write_text(dir + "/scene.json", s.dump());
+    try {
+        load_scene_config(dir + "/scene.json");
+        FAIL() << "a missing texture was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.field(), "bodies[1].texture");
+        EXPECT_NE(std::string(e.what()).find("no-such-earth.png"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(dir + "/scene.json"), std::string::npos) << e.what();
+    }
+    s["bodies"][1]["texture"] = "generated:earth";
+    s["stars"]["catalog"] = dir + "/no-such-stars.csv";
+    test::write_text(dir + "/scene.json", s.dump());
+    try {
+        load_scene_config(dir + "/scene.json");
+        FAIL() << "a missing catalogue was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.field(), "stars.catalog");
+        EXPECT_NE(std::string(e.what()).find("no-such-stars.csv"), std::string::npos) << e.what();
+    }
+    // The slave refuses to start, and says why.
+    json c = json::parse(test::read_text(test::source_path("configs/dome-4ch.json")));
+    c["key_file"] = test::source_path("configs/keys/loopback.key");
+    c["show"] = test::source_path("configs/shows/earth-moon.json");
+    c["scene"] = dir + "/scene.json";
+    test::write_text(dir + "/cluster.json", c.dump());
+    const auto [status, out] = test::run_shell(test::bin_path("cupola-slave") + " --config " + dir +
+                                               "/cluster.json --channel 0 --out " + dir + "/out 2>&1");
+    EXPECT_EQ(status, 2) << out;
+    EXPECT_NE(out.find("stars.catalog"), std::string::npos) << out;
+    EXPECT_NE(out.find("no-such-stars.csv"), std::string::npos) << out;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out/" "frame_000000.png"));
 }
