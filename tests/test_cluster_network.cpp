@@ -75,6 +75,20 @@ void expect_no_security_rejections(const nlohmann::json& wire, const std::string
     EXPECT_EQ(wire["malformed"], 0) << who;
 }
 
+// Waits for master and slaves to finish; "" when every process exited 0, else what went wrong.
+std::string finish_run(NetnsCluster& c) {
+    std::string failures;
+    c.finish(failures);
+    return failures;
+}
+
+// No node saw a forged, replayed, foreign or malformed datagram.
+void expect_no_security_rejections_anywhere(const NetnsCluster& c) {
+    expect_no_security_rejections(c.stats(c.master_stats())["wire"], "master");
+    for (int id = 0; id < NetnsCluster::kChannels; ++id)
+        expect_no_security_rejections(slave_stats(c, id)["wire"], "slave " + std::to_string(id));
+}
+
 }  // namespace
 
 class ClusterLoss : public ::testing::TestWithParam<int> {};
@@ -87,9 +101,7 @@ TEST_P(ClusterLoss, EveryChannelRendersEveryFrameFromTheSameSnapshot) {
         c.bed.set_loss(h, percent, NetnsCluster::kSnapshotPort, NetnsCluster::kSnapshotPort);
     c.bed.set_loss("master", percent, NetnsCluster::kReportPort, NetnsCluster::kReportPort);
     c.start_all(kFrames);
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
 
     uint64_t injected = c.bed.dropped_packets("master");
     for (const char* h : {"s1", "s2", "s3"}) injected += c.bed.dropped_packets(h);
@@ -125,17 +137,13 @@ TEST(ClusterRelay, ReorderedDatagramsAreReassembledAndCounted) {
     o.relay_faults = {"--reorder", "0.3"};
     NetnsCluster c("reorder", o);
     c.start_all(kFrames);
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto relay = c.stats(c.dir + "/relay-snapshots.json");
     EXPECT_GT(relay["reordered"].get<uint64_t>(), 0u);
     EXPECT_GT(sum_over_slaves(c, "wire", "reordered"), 0u);
     EXPECT_EQ(sum_over_slaves(c, "wire", "duplicates"), 0u);
-    expect_no_security_rejections(c.stats(c.master_stats())["wire"], "master");
-    for (int id = 0; id < NetnsCluster::kChannels; ++id)
-        expect_no_security_rejections(slave_stats(c, id)["wire"], "slave " + std::to_string(id));
+    expect_no_security_rejections_anywhere(c);
 }
 
 TEST(ClusterRelay, DuplicatedDatagramsAreDroppedAndCounted) {
@@ -145,9 +153,7 @@ TEST(ClusterRelay, DuplicatedDatagramsAreDroppedAndCounted) {
     o.relay_faults = {"--duplicate", "0.3"};
     NetnsCluster c("dup", o);
     c.start_all(kFrames);
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto relay_s = c.stats(c.dir + "/relay-snapshots.json");
     const auto relay_r = c.stats(c.dir + "/relay-reports.json");
@@ -176,9 +182,7 @@ TEST(ClusterRelay, DelayWithJitterOnBothDirections) {
     o.resend_interval_ms = 60;  // longer than a round trip, so resends mean loss, not delay
     NetnsCluster c("delay", o);
     c.start_all(kFrames);
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto relay = c.stats(c.dir + "/relay-snapshots.json");
     EXPECT_GE(relay["max_hold_ms"].get<double>(), 10.0);
@@ -211,9 +215,7 @@ TEST(ClusterFaults, LinkFlapCostsResendsNotFrames) {
     c.bed.link_down("s2");
     std::this_thread::sleep_for(700ms);
     c.bed.link_up("s2");
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto m = c.stats(c.master_stats());
     EXPECT_GE(m["master"]["snapshot_resends"].get<uint64_t>(), 5u) << m.dump(2);  // 700 ms at 20 ms intervals
@@ -242,9 +244,7 @@ TEST(ClusterFaults, KilledSlaveRestartedRendersWithinASecondOthersHaveNoGap) {
     std::printf("restarted slave wrote its first frame %.3f s after it was started\n", rejoin_s);
     EXPECT_LT(rejoin_s, 1.0);
 
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     // The barrier waited for the channel instead of dropping it: nobody, the victim included, has a gap.
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto m = c.stats(c.master_stats());
@@ -263,9 +263,7 @@ TEST(ClusterFaults, RestartedMasterResumesAndSlavesReRegisterWithoutRestarting) 
     ASSERT_TRUE(c.master->wait_for(5s).has_value());
     std::this_thread::sleep_for(1500ms);  // the slaves notice the silence
     c.master.emplace(c.start_master(kFrames, "master2"));
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
 
     uint64_t resumed_at = 0;
     for (const auto& e : test::read_events(c.dir + "/master2.events.jsonl"))
@@ -300,9 +298,7 @@ TEST(ClusterFaults, WedgedSlaveIsTimedOutOthersGoOnItRejoinsWhenItRecovers) {
     c.slaves[2].kill(SIGSTOP);
     std::this_thread::sleep_for(2500ms);
     c.slaves[2].kill(SIGCONT);
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     const auto hashes = c.master_hashes();
     expect_no_gap_no_mixed_frame(c, 0, kFrames, hashes, {0, 1, 3});
     uint64_t dropped_at = 0, rejoined_at = 0;
@@ -403,9 +399,7 @@ TEST(ClusterSecurity, ForgedReplayedTruncatedAndFlippedPacketsAreRejectedCounted
         send(master_port, v), ++to_master;
     }
 
-    std::string failures;
-    c.finish(failures);
-    ASSERT_TRUE(failures.empty()) << failures;
+    ASSERT_EQ(finish_run(c), "");
     ::close(tx);
     // Nothing changed: every channel rendered exactly the master's frames, once each.
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
