@@ -18,6 +18,8 @@ struct MasterCounters {
     uint64_t malformed_messages = 0; // authentic, but the body did not decode
     uint64_t unknown_channel = 0;    // authentic, from a channel id not in the config
     uint64_t quit_acks = 0;
+    uint64_t control_commands = 0;   // lines from the control channel
+    uint64_t control_errors = 0;     // of those: refused (named in the reply)
 
     nlohmann::json to_json() const {
         return {{"frames", frames},
@@ -30,7 +32,9 @@ struct MasterCounters {
                 {"channel_restarts", channel_restarts},
                 {"malformed_messages", malformed_messages},
                 {"unknown_channel", unknown_channel},
-                {"quit_acks", quit_acks}};
+                {"quit_acks", quit_acks},
+                {"control_commands", control_commands},
+                {"control_errors", control_errors}};
     }
 };
 

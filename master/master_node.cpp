@@ -7,7 +7,11 @@
 #include <set>
 #include <thread>
 
+#include "control/control_server.hpp"
+#include "director.hpp"
 #include "frame_barrier.hpp"
+#include "input/input_hub.hpp"
+#include "input/input_latency.hpp"
 #include "master_counters.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
@@ -38,16 +42,28 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
     const double dt = cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
     const double show_time_s = static_cast<double>(frame) * dt;
     Snapshot snap = show.evaluate(show_time_s, scene);
+    finish_frame_snapshot(snap, show.settings_at(show_time_s), cluster, scene, frame, dt, auto_exposure, glare);
+    return snap;
+}
+
+void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
+                           const SceneConfig& scene, uint64_t frame, double frame_interval_s,
+                           const AutoExposure* auto_exposure, const GlareSources* glare) {
     snap.frame = frame;
-    snap.settings.exposure = static_cast<float>(
-        auto_exposure && cluster.output.auto_exposure.enabled ? auto_exposure->exposure(snap) : cluster.output.exposure);
-    snap.settings.star_magnitude_limit = static_cast<float>(scene.stars.magnitude_limit);
+    if (settings.exposure)
+        snap.settings.exposure = *settings.exposure;
+    else
+        snap.settings.exposure = static_cast<float>(auto_exposure && cluster.output.auto_exposure.enabled
+                                                        ? auto_exposure->exposure(snap)
+                                                        : cluster.output.exposure);
+    snap.settings.star_magnitude_limit =
+        settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
     if (glare && scene.glare.enabled) {
         // The phase wraps well before float loses the fractions that animate the rays.
-        snap.settings.glare_phase = static_cast<float>(std::fmod(show_time_s * scene.glare.animation_rate, 4096.0));
+        const double t = static_cast<double>(frame) * frame_interval_s;
+        snap.settings.glare_phase = static_cast<float>(std::fmod(t * scene.glare.animation_rate, 4096.0));
         snap.glare = glare->select(snap);
     }
-    return snap;
 }
 
 namespace {
@@ -76,6 +92,12 @@ int MasterNode::run() {
     const auto destinations = snapshot_destinations(cluster_);
     EventLog events(options_.events_file);
     spdlog::info("master: session {:016x}", session);
+    // The control channel listens from the start; commands apply from the first frame on.
+    std::unique_ptr<ControlServer> control;
+    if (!options_.control.empty()) {
+        control = std::make_unique<ControlServer>(options_.control);
+        spdlog::info("master: control commands on {}", options_.control == "-" ? "standard input" : options_.control);
+    }
 
     std::vector<int> ids;
     for (const auto& c : cluster_.channels) ids.push_back(c.id);
@@ -205,6 +227,28 @@ int MasterNode::run() {
         }
     }
 
+    // Who drives camera and clock (show or presenter).
+    Director director(cluster_, scene_, show_);
+    InputHub input_hub;
+    InputLatency input_latency;
+    auto run_commands = [&](uint64_t next_frame) {
+        if (!control) return;
+        for (const ControlRequest& req : control->take()) {
+            std::string reply;
+            try {
+                const ControlCommand cmd = parse_control_line(req.line);
+                reply = "ok " + director.apply(cmd, next_frame);
+            } catch (const ControlError& e) {
+                reply = std::string("error ") + e.what();
+                ++counters.control_errors;
+            }
+            ++counters.control_commands;
+            spdlog::info("master: control \"{}\" -> {}", req.line.substr(0, 200), reply.substr(0, 200));
+            events.write({{"event", "control"}, {"frame", next_frame}, {"line", req.line.substr(0, 200)}, {"reply", reply}});
+            control->reply(req.client, reply);
+        }
+    };
+
     GlareSharing glare_sharing(cluster_);
     std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility
     const auto run_start = Clock::now();
@@ -212,7 +256,12 @@ int MasterNode::run() {
     uint64_t frames_incomplete = 0;
     for (uint64_t frame = start_frame; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
         current_frame = frame;
-        Snapshot snap = make_frame_snapshot(cluster_, scene_, show_, frame, auto_exposure_.get(), glare_sources_.get());
+        run_commands(frame);
+        if (director.quit_requested()) break;
+        const DirectedFrame directed = director.frame(frame, input_hub.combined());
+        Snapshot snap = directed.snapshot;
+        finish_frame_snapshot(snap, directed.settings, cluster_, scene_, frame, director.frame_interval_s(),
+                              auto_exposure_.get(), glare_sources_.get());
         if (frame > start_frame) glare_sharing.apply(snap, previous_reports, frame - 1);
         const std::vector<uint8_t> payload = encode_snapshot(snap);
         const std::string hash = snapshot_hash(payload);
@@ -222,6 +271,10 @@ int MasterNode::run() {
         const uint64_t sent_ns = monotonic_ns();
         wire.send(PacketType::Snapshot, frame, payload, destinations);
         ++counters.snapshots_sent;
+        // Device report -> this snapshot on the wire: the presenter's latency, less the render.
+        std::optional<double> input_ms;
+        if (directed.input_used && directed.input_report_ns && sent_ns >= directed.input_report_ns)
+            input_ms = input_latency.add(directed.input_report_ns, monotonic_ns());
         auto last_send = Clock::now();
         auto resend = [&] {
             wire.send(PacketType::Snapshot, frame, payload, destinations);
@@ -271,8 +324,15 @@ int MasterNode::run() {
                              {"offset", {g.centroid_offset.x, g.centroid_offset.y, g.centroid_offset.z}}});
         previous_reports = std::move(reports);
         const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
-        events.write({{"event", "frame"}, {"frame", frame}, {"hash", hash}, {"sim_time_s", snap.sim_time_s},
-                      {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}, {"glare", glare}});
+        nlohmann::json fe{{"event", "frame"}, {"frame", frame}, {"hash", hash}, {"sim_time_s", snap.sim_time_s},
+                          {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}, {"glare", glare},
+                          {"mode", director.live() ? "live" : "show"},
+                          {"camera_m", {snap.camera_position_m.x, snap.camera_position_m.y, snap.camera_position_m.z}},
+                          {"camera_q", {snap.camera_orientation.w, snap.camera_orientation.x, snap.camera_orientation.y,
+                                        snap.camera_orientation.z}},
+                          {"flags", snap.settings.flags}, {"exposure", snap.settings.exposure}};
+        if (input_ms) fe["input_latency_ms"] = *input_ms;
+        events.write(fe);
         ++frames_done;
         ++counters.frames;
         if (static_cast<int>(previous_reports.size()) < static_cast<int>(ids.size())) ++frames_incomplete;
@@ -316,6 +376,8 @@ int MasterNode::run() {
     const double secs = std::chrono::duration<double>(Clock::now() - run_start).count();
     spdlog::info("master: {} frames in {:.2f} s ({:.2f} frames/s), {} with missing channels; wire: {}", frames_done,
                  secs, frames_done / std::max(secs, 1e-9), frames_incomplete, wire.counters().summary());
+    if (input_latency.count())
+        spdlog::info("master: device report -> snapshot sent: {}", input_latency.summary());
     if (glare_sources_)
         spdlog::info("master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "
                      "report)",

@@ -25,6 +25,7 @@ struct MasterOptions {
     // A master (re)started while slaves already rendered frames continues the show after the
     // last frame every one of them rendered, so a master restart leaves no channel a gap.
     bool resume = true;
+    std::string control;             // control socket path, "-" for standard input ("" none)
 };
 
 // The snapshot for a frame as the show alone defines it: deterministic in the frame index, so
@@ -36,6 +37,13 @@ struct MasterOptions {
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
                              uint64_t frame, const AutoExposure* auto_exposure = nullptr,
                              const GlareSources* glare = nullptr);
+
+// What the master adds to a frame's simulation state (show or live): the frame index, exposure
+// (the show's or a control override, else the cluster's fixed or automatic one), the star limit,
+// the glare phase (from the frame index, so it runs on in every mode) and the glare sources.
+void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
+                           const SceneConfig& scene, uint64_t frame, double frame_interval_s,
+                           const AutoExposure* auto_exposure, const GlareSources* glare);
 
 class MasterNode {
 public:

@@ -14,9 +14,10 @@
 
 namespace cupola {
 
-ShowScript::ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s)
-    : keys_(std::move(keys)), frame_interval_s_(frame_interval_s) {
+ShowScript::ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s, std::vector<ShowEvent> events)
+    : keys_(std::move(keys)), events_(std::move(events)), frame_interval_s_(frame_interval_s) {
     if (keys_.empty()) throw std::invalid_argument("a show needs at least one keyframe");
+    std::stable_sort(events_.begin(), events_.end(), [](const ShowEvent& a, const ShowEvent& b) { return a.at_s < b.at_s; });
 }
 
 ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
@@ -46,6 +47,8 @@ ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
         }
         if (k.has("shadow_mode"))
             f.shadow_mode = shadow_mode_from_name(k.one_of("shadow_mode", shadow_mode_names()));
+        f.camera_easing = easing_from_name(k.one_of("easing", easing_names(), "ease_in_out"));
+        f.time_easing = easing_from_name(k.one_of("time_easing", easing_names(), "linear"));
         auto c = k.child("camera");
         f.camera.anchor = body_id(c, "anchor");
         f.camera.offset_m = c.optional_dvec3("offset_m").value_or(glm::dvec3(0.0));
@@ -78,8 +81,32 @@ ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
         k.reject_unknown_keys();
         keys.push_back(f);
     }
+    std::vector<ShowEvent> events;
+    if (r.has("events")) {
+        for (auto& e : r.array("events")) {
+            ShowEvent ev;
+            ev.at_s = e.number_in("at_s", 0.0, 1e12);
+            if (e.has("shadow_mode")) ev.shadow_mode = shadow_mode_from_name(e.one_of("shadow_mode", shadow_mode_names()));
+            if (e.has("exposure")) {
+                if (e.raw().at("exposure").is_string()) {
+                    e.one_of("exposure", {"auto"});
+                    ev.exposure_auto = true;
+                } else {
+                    ev.exposure = static_cast<float>(e.number_in("exposure", 1e-6, 1e6));
+                }
+            }
+            if (e.has("star_magnitude_limit"))
+                ev.star_magnitude_limit = static_cast<float>(e.number_in("star_magnitude_limit", -30.0, 30.0));
+            e.reject_unknown_keys();
+            if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit)
+                e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit");
+            events.push_back(ev);
+        }
+    }
     r.reject_unknown_keys();
-    return ShowScript(std::move(keys), interval);
+    ShowScript show(std::move(keys), interval, std::move(events));
+    show.file_ = file;
+    return show;
 }
 
 namespace {
@@ -156,20 +183,45 @@ Snapshot ShowScript::evaluate(double show_time_s, const SceneConfig& scene) cons
         rate = (q.sim_time_s - p.sim_time_s) / (q.at_s - p.at_s);
     }
     double t = (&a == &b) ? a.sim_time_s + (show_time_s - a.at_s) * rate
-                          : a.sim_time_s + f * (b.sim_time_s - a.sim_time_s);
+                          : a.sim_time_s + ease(a.time_easing, f) * (b.sim_time_s - a.sim_time_s);
 
     Snapshot s;
     s.sim_time_s = t;
     const CameraPose pa = pose_at(a.camera, scene, t), pb = pose_at(b.camera, scene, t);
-    const double smooth = f * f * (3.0 - 2.0 * f);  // ease in and out between keyframes
+    const double smooth = ease(a.camera_easing, f);
     s.camera_position_m = pa.position + (pb.position - pa.position) * smooth;
     s.camera_orientation = glm::normalize(glm::slerp(pa.orientation, pb.orientation, smooth));
     for (const auto& body : scene.bodies) s.bodies.push_back(body_state(body, t));
-    ShadowMode mode = scene.shadows.mode;
-    for (size_t k = 0; k <= i; ++k)
-        if (keys_[k].shadow_mode) mode = *keys_[k].shadow_mode;
-    s.settings.flags = with_shadow_mode(s.settings.flags, mode);
+    s.settings.flags = with_shadow_mode(s.settings.flags, settings_at(show_time_s).shadow_mode.value_or(scene.shadows.mode));
     return s;
+}
+
+ShowSettings ShowScript::settings_at(double show_time_s) const {
+    // Keyframes and events in show-time order; at equal times an event wins over a keyframe.
+    ShowSettings out;
+    size_t e = 0;
+    auto apply_events_until = [&](double t, bool inclusive) {
+        for (; e < events_.size() && (inclusive ? events_[e].at_s <= t : events_[e].at_s < t); ++e) {
+            const ShowEvent& ev = events_[e];
+            if (ev.shadow_mode) out.shadow_mode = ev.shadow_mode;
+            if (ev.exposure) out.exposure = ev.exposure;
+            if (ev.exposure_auto) out.exposure.reset();
+            if (ev.star_magnitude_limit) out.star_magnitude_limit = ev.star_magnitude_limit;
+        }
+    };
+    for (const auto& k : keys_) {
+        if (k.at_s > show_time_s) break;
+        apply_events_until(k.at_s, false);
+        if (k.shadow_mode) out.shadow_mode = k.shadow_mode;
+    }
+    apply_events_until(show_time_s, true);
+    return out;
+}
+
+double ShowScript::duration_s() const {
+    double d = keys_.back().at_s;
+    if (!events_.empty()) d = std::max(d, events_.back().at_s);
+    return d;
 }
 
 }  // namespace cupola

@@ -9,7 +9,8 @@ PACKAGES=(
   libegl-dev libopengl-dev libgl-dev           # EGL + OpenGL through libglvnd
   libegl-mesa0 libgl1-mesa-dri                 # Mesa (llvmpipe) for machines without a GPU
   libopenimageio-dev openimageio-tools         # image files (EXR, PNG) and oiiotool
-  libusb-1.0-0-dev                             # navigation devices (master)
+  libusb-1.0-0-dev libudev-dev                 # navigation devices (master)
+  umockdev libumockdev-dev                     # emulated USB devices for the navigation-device tests
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libsodium-dev                                # HMAC-SHA256 packet authentication, BLAKE2b hashes
   liberfa-dev                                  # time scales and Earth rotation (ERFA)

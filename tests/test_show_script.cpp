@@ -7,6 +7,8 @@
 #include "config/config_error.hpp"
 #include "scene/ephemeris.hpp"
 #include "scene/sim_time.hpp"
+#include "eclipse/shadow_casters.hpp"
+#include "master_node.hpp"
 #include "show_script.hpp"
 #include "support/test_support.hpp"
 
@@ -108,4 +110,109 @@ TEST(ShowScript, ErrorsNameTheField) {
     } catch (const ConfigError& e) {
         EXPECT_EQ(e.field(), "keyframes[0].time_utc");
     }
+}
+
+namespace {
+// A two-key show on the Earth-Moon scene: one hour of simulation time over 10 show seconds, the
+// camera moving 1000 km along x, with the given easings and events.
+ShowScript easing_show(const SceneConfig& scene, const std::string& dir, const std::string& camera_easing,
+                       const std::string& time_easing, const std::string& events = "") {
+    test::write_text(dir + "/show.json", R"({"frame_interval_s": 0.5, "keyframes":[
+        {"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":")" + camera_easing + R"(","time_easing":")" +
+                                               time_easing + R"(",
+         "camera":{"anchor":"earth","offset_m":[2e7,0,0],"look_at":"earth"}},
+        {"at_s":10,"time_utc":"2024-04-08T13:00:00Z",
+         "camera":{"anchor":"earth","offset_m":[2.1e7,0,0],"look_at":"earth"}}])" +
+                                               (events.empty() ? "" : ", \"events\": " + events) + "}");
+    return ShowScript::load(dir + "/show.json", scene);
+}
+double camera_x_from_earth(const Snapshot& s, const SceneConfig& scene) {
+    return s.camera_position_m.x - s.bodies[scene.find("earth")->id].position_m.x;
+}
+}  // namespace
+
+TEST(ShowScript, EasingShapesCameraAndTimeBetweenKeys) {
+    SceneConfig scene = load_scene_config(test::source_path("configs/scenes/earth-moon.json"));
+    const std::string dir = test::scratch_dir("show_easing");
+    const double t0 = utc_iso_to_j2000_seconds("2024-04-08T12:00:00Z");
+    struct Case {
+        const char* name;
+        double at_quarter;  // eased progress at f = 0.25
+    };
+    for (const Case c : {Case{"linear", 0.25}, Case{"ease_in", 0.0625}, Case{"ease_out", 0.4375},
+                         Case{"ease_in_out", 0.15625}, Case{"hold", 0.0}}) {
+        SCOPED_TRACE(c.name);
+        const ShowScript cam = easing_show(scene, dir, c.name, "linear");
+        // Camera: 1000 km between the keys, eased; time stays linear.
+        const Snapshot s = cam.evaluate(2.5, scene);
+        EXPECT_NEAR(camera_x_from_earth(s, scene) - 2e7, 1e6 * c.at_quarter, 1e-3);
+        EXPECT_NEAR(s.sim_time_s - t0, 900.0, 1e-6);
+        // Both ends are reached exactly.
+        EXPECT_NEAR(camera_x_from_earth(cam.evaluate(0.0, scene), scene), 2e7, 1e-3);
+        EXPECT_NEAR(camera_x_from_earth(cam.evaluate(10.0, scene), scene), 2.1e7, 1e-3);
+        // Time easing: the clock follows the same curve.
+        const ShowScript tim = easing_show(scene, dir, "linear", c.name);
+        EXPECT_NEAR(tim.evaluate(2.5, scene).sim_time_s - t0, 3600.0 * c.at_quarter, 1e-6);
+        EXPECT_NEAR(tim.evaluate(10.0, scene).sim_time_s - t0, 3600.0, 1e-6);
+    }
+    // The default is the old behaviour: camera ease in-out, time linear.
+    test::write_text(dir + "/default.json", R"({"keyframes":[
+        {"at_s":0,"time_utc":"2024-04-08T12:00:00Z","camera":{"anchor":"earth","offset_m":[2e7,0,0],"look_at":"earth"}},
+        {"at_s":10,"time_utc":"2024-04-08T13:00:00Z","camera":{"anchor":"earth","offset_m":[2.1e7,0,0],"look_at":"earth"}}]})");
+    const ShowScript def = ShowScript::load(dir + "/default.json", scene);
+    EXPECT_NEAR(camera_x_from_earth(def.evaluate(2.5, scene), scene) - 2e7, 1e6 * 0.15625, 1e-3);
+    EXPECT_NEAR(def.evaluate(2.5, scene).sim_time_s - t0, 900.0, 1e-6);
+}
+
+TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
+    SceneConfig scene = load_scene_config(test::source_path("configs/scenes/earth-moon.json"));
+    const std::string dir = test::scratch_dir("show_events");
+    const ShowScript show = easing_show(scene, dir, "linear", "linear", R"([
+        {"at_s": 2, "shadow_mode": "illustrative"},
+        {"at_s": 4, "exposure": 2.5, "star_magnitude_limit": 4.0},
+        {"at_s": 6, "exposure": "auto", "shadow_mode": "off"}])");
+    EXPECT_EQ(shadow_mode_of(show.evaluate(1.99, scene).settings.flags), scene.shadows.mode);
+    EXPECT_EQ(shadow_mode_of(show.evaluate(2.0, scene).settings.flags), ShadowMode::Illustrative);
+    EXPECT_FALSE(show.settings_at(3.9).exposure);
+    ASSERT_TRUE(show.settings_at(4.0).exposure);
+    EXPECT_FLOAT_EQ(*show.settings_at(5.0).exposure, 2.5f);
+    EXPECT_FLOAT_EQ(*show.settings_at(5.0).star_magnitude_limit, 4.0f);
+    EXPECT_FALSE(show.settings_at(6.0).exposure);                    // back to the cluster's exposure
+    EXPECT_FLOAT_EQ(*show.settings_at(6.0).star_magnitude_limit, 4.0f);  // kept
+    EXPECT_EQ(shadow_mode_of(show.evaluate(7.0, scene).settings.flags), ShadowMode::Off);
+    EXPECT_DOUBLE_EQ(show.duration_s(), 10.0);
+
+    // The master turns them into the snapshot every channel receives.
+    ClusterConfig cfg = load_cluster_config(test::source_path("configs/dome-4ch.json"));
+    cfg.frame_rate_hz = 0;  // frame N = show time N x 0.5 s
+    const Snapshot f9 = make_frame_snapshot(cfg, scene, show, 9);  // 4.5 s
+    EXPECT_FLOAT_EQ(f9.settings.exposure, 2.5f);
+    EXPECT_FLOAT_EQ(f9.settings.star_magnitude_limit, 4.0f);
+    EXPECT_EQ(shadow_mode_of(f9.settings.flags), ShadowMode::Illustrative);
+    const Snapshot f13 = make_frame_snapshot(cfg, scene, show, 13);  // 6.5 s
+    EXPECT_FLOAT_EQ(f13.settings.exposure, static_cast<float>(cfg.output.exposure));
+    EXPECT_EQ(shadow_mode_of(f13.settings.flags), ShadowMode::Off);
+}
+
+TEST(ShowScript, BadEasingsAndEventsNameTheField) {
+    SceneConfig scene = load_scene_config(test::source_path("configs/scenes/earth-moon.json"));
+    const std::string dir = test::scratch_dir("show_bad_events");
+    auto field_of = [&](const std::string& text) {
+        test::write_text(dir + "/s.json", text);
+        try {
+            ShowScript::load(dir + "/s.json", scene);
+        } catch (const ConfigError& e) {
+            return e.field();
+        }
+        return std::string("(accepted)");
+    };
+    const std::string key = R"({"at_s":0,"time_utc":"2024-04-08T12:00:00Z","camera":{"look_at":"earth"}})";
+    EXPECT_EQ(field_of(R"({"keyframes":[{"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":"bouncy","camera":{"look_at":"earth"}}]})"),
+              "keyframes[0].easing");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"shadow_mode":"sharp"}]})"),
+              "events[0].shadow_mode");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":-1}]})"), "events[0].exposure");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":"bright"}]})"), "events[0].exposure");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1}]})"), "events[0].at_s");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":1,"glow":1}]})"), "events[0].glow");
 }

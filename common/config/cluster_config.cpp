@@ -169,6 +169,25 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
         o->reject_unknown_keys();
     }
 
+    if (auto in = r.optional_child("input")) {
+        InputConfig& ic = cfg.input;
+        ic.usb = in->boolean("usb", ic.usb);
+        if (in->has("device_table")) {
+            ic.device_table_file = resolve_path(cfg.directory, in->string("device_table"));
+            if (!fs::is_regular_file(ic.device_table_file))
+                in->fail("device_table", "file \"" + ic.device_table_file + "\" does not exist");
+        }
+        ic.dead_zone = in->number_in("dead_zone", 0.0, 0.9, ic.dead_zone);
+        ic.smoothing_s = in->number_in("smoothing_s", 0.0, 10.0, ic.smoothing_s);
+        ic.speed_per_altitude = in->number_in("speed_per_altitude", 1e-6, 100.0, ic.speed_per_altitude);
+        ic.min_speed_m_s = in->number_in("min_speed_m_s", 0.0, 1e9, ic.min_speed_m_s);
+        ic.turn_rate_deg_s = in->number_in("turn_rate_deg_s", 0.1, 3600.0, ic.turn_rate_deg_s);
+        ic.orbit_rate_deg_s = in->number_in("orbit_rate_deg_s", 0.1, 3600.0, ic.orbit_rate_deg_s);
+        ic.goto_seconds = in->number_in("goto_seconds", 0.0, 600.0, ic.goto_seconds);
+        ic.takeover = in->boolean("takeover", ic.takeover);
+        in->reject_unknown_keys();
+    }
+
     auto channels = r.array("channels");
     if (channels.empty()) r.fail("channels", "at least one channel is required");
     std::set<int> ids;

@@ -50,6 +50,21 @@ struct OutputConfig {
     AutoExposureConfig auto_exposure;
 };
 
+// Live navigation on the master (master/input, master/navigation): the USB devices and how they
+// fly the camera. The numbers are at full deflection of an axis.
+struct InputConfig {
+    bool usb = true;                  // look for USB navigation devices (none found: nothing happens)
+    std::string device_table_file;    // optional JSON device table (resolved path), before the defaults
+    double dead_zone = 0.08;          // fraction of an axis' travel that counts as rest
+    double smoothing_s = 0.12;        // time constant of the input smoothing (0: none)
+    double speed_per_altitude = 0.5;  // translation per second, as a fraction of the altitude
+    double min_speed_m_s = 1.0;       // translation floor (on foot)
+    double turn_rate_deg_s = 45.0;    // looking around
+    double orbit_rate_deg_s = 30.0;   // orbiting a body
+    double goto_seconds = 4.0;        // duration of a "goto" flight
+    bool takeover = true;             // touching a device during a show stops it and hands over the camera
+};
+
 struct ChannelConfig {
     int id = 0;
     std::string name;
@@ -73,6 +88,7 @@ struct ClusterConfig {
     NetworkConfig network;
     DomeConfig dome;
     OutputConfig output;
+    InputConfig input;
     std::vector<ChannelConfig> channels;
 
     const ChannelConfig& channel(int id) const;  // throws std::out_of_range naming the id

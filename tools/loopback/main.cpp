@@ -17,12 +17,14 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
     CLI::App app{"Cupola loopback: master + one slave per channel on this machine, then a stitched domemaster"};
-    std::string config, out;
+    std::string config, out, control;
     long long frames = 10;
     int size = 0, timeout_s = 600;
     bool verbose = false, no_stitch = false;
     app.add_option("-c,--config", config, "cluster config (JSON)")->required()->check(CLI::ExistingFile);
-    app.add_option("-n,--frames", frames, "number of frames")->check(CLI::Range(1LL, 1000000LL));
+    auto* frames_opt = app.add_option("-n,--frames", frames, "number of frames (default 10; with --control: until quit)")
+                           ->check(CLI::Range(1LL, 1000000LL));
+    app.add_option("--control", control, "the master takes control commands on this local socket (see cupola-control)");
     app.add_option("-o,--out", out, "output folder: <channel>/ frames, dome/ domemasters, logs/")->required();
     app.add_option("--dome-size", size, "domemaster size in pixels (default: from the config)")->check(CLI::Range(16, 16384));
     app.add_option("--timeout", timeout_s, "give up (and stop everything) after this many seconds")->check(CLI::Range(1, 86400));
@@ -45,9 +47,16 @@ int main(int argc, char** argv) {
             if (verbose) args.push_back("--verbose");
             slaves.emplace_back(args, (fs::path(out) / "logs" / (ch.name + ".log")).string(), headless);
         }
-        std::vector<std::string> margs = {bin + "/cupola-master", "--config", cfg.file, "--frames",
-                                          std::to_string(frames), "--events",
+        std::vector<std::string> margs = {bin + "/cupola-master", "--config", cfg.file, "--events",
                                           (fs::path(out) / "logs" / "events.jsonl").string()};
+        if (control.empty() || frames_opt->count()) {
+            margs.push_back("--frames");
+            margs.push_back(std::to_string(frames));
+        }
+        if (!control.empty()) {
+            margs.push_back("--control");
+            margs.push_back(control);
+        }
         cupola::ChildProcess master(margs, (fs::path(out) / "logs" / "master.log").string(), headless);
         spdlog::info("started master (pid {}) and {} slave(s); logs in {}", master.pid(), slaves.size(),
                      (fs::path(out) / "logs").string());

@@ -1,0 +1,134 @@
+#include "control_command.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "config/scene_config.hpp"
+#include "scene/sim_time.hpp"
+
+namespace cupola {
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+double parse_number(const std::string& word, const std::string& what) {
+    try {
+        size_t used = 0;
+        const double v = std::stod(word, &used);
+        if (used != word.size() || !std::isfinite(v)) throw std::invalid_argument(word);
+        return v;
+    } catch (const std::exception&) {
+        throw ControlError(what + ": \"" + word + "\" is not a number");
+    }
+}
+
+void expect_count(const std::vector<std::string>& w, size_t lo, size_t hi, const std::string& usage) {
+    if (w.size() < lo || w.size() > hi) throw ControlError("usage: " + usage);
+}
+
+}  // namespace
+
+const std::string& control_help() {
+    static const std::string text =
+        "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
+        "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
+        "set star_limit <mag>|show | status | quit | help";
+    return text;
+}
+
+ControlCommand parse_control_line(const std::string& line) {
+    if (line.size() > 1024) throw ControlError("line too long (" + std::to_string(line.size()) + " bytes, at most 1024)");
+    for (unsigned char c : line)
+        if (c < 0x20 && c != '\t' && c != '\r') throw ControlError("control character " + std::to_string(c) + " in the line");
+    std::istringstream in(line);
+    std::vector<std::string> w;
+    for (std::string word; in >> word;) w.push_back(word);
+    if (w.empty()) throw ControlError("empty line; " + control_help());
+    ControlCommand c;
+    const std::string verb = lower(w[0]);
+    if (verb == "goto") {
+        expect_count(w, 2, 3, "goto <body> [seconds]");
+        c.verb = ControlVerb::Goto;
+        c.body = w[1];
+        if (w.size() == 3) {
+            c.seconds = parse_number(w[2], "goto seconds");
+            if (*c.seconds < 0.0 || *c.seconds > 600.0) throw ControlError("goto seconds: must be 0..600, not " + w[2]);
+        }
+    } else if (verb == "mode") {
+        expect_count(w, 2, 3, "mode orbit|fly|walk [body]");
+        c.verb = ControlVerb::Mode;
+        c.nav_mode = lower(w[1]);
+        if (c.nav_mode != "orbit" && c.nav_mode != "fly" && c.nav_mode != "walk")
+            throw ControlError("mode: \"" + w[1] + "\" is not one of orbit, fly, walk");
+        if (w.size() == 3) c.body = w[2];
+    } else if (verb == "time") {
+        if (w.size() < 2) throw ControlError("usage: time rate <x> | time set <UTC>");
+        const std::string what = lower(w[1]);
+        if (what == "rate") {
+            expect_count(w, 3, 3, "time rate <x>");
+            c.verb = ControlVerb::TimeRate;
+            c.rate = parse_number(w[2], "time rate");
+            if (std::abs(c.rate) > 1e10) throw ControlError("time rate: " + w[2] + " is beyond +-1e10");
+        } else if (what == "set") {
+            expect_count(w, 3, 3, "time set <ISO-8601 UTC, e.g. 2024-04-08T18:17:00Z>");
+            c.verb = ControlVerb::TimeSet;
+            c.utc = w[2];
+            try {
+                c.sim_time_s = utc_iso_to_j2000_seconds(w[2]);
+            } catch (const std::exception& e) {
+                throw ControlError(std::string("time set: ") + e.what());
+            }
+        } else {
+            throw ControlError("time: \"" + w[1] + "\" is not rate or set");
+        }
+    } else if (verb == "play") {
+        expect_count(w, 1, 2, "play [show.json]");
+        c.verb = ControlVerb::Play;
+        if (w.size() == 2) c.show_file = w[1];
+    } else if (verb == "pause" || verb == "resume" || verb == "stop" || verb == "status" || verb == "quit" ||
+               verb == "help") {
+        expect_count(w, 1, 1, verb);
+        c.verb = verb == "pause"    ? ControlVerb::Pause
+                 : verb == "resume" ? ControlVerb::Resume
+                 : verb == "stop"   ? ControlVerb::Stop
+                 : verb == "status" ? ControlVerb::Status
+                 : verb == "quit"   ? ControlVerb::Quit
+                                    : ControlVerb::Help;
+    } else if (verb == "set") {
+        expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit <value>");
+        c.verb = ControlVerb::Set;
+        c.setting = lower(w[1]);
+        c.value = lower(w[2]);
+        if (c.setting == "shadow_mode") {
+            if (c.value != "show") {
+                const auto& n = shadow_mode_names();
+                if (std::find(n.begin(), n.end(), c.value) == n.end())
+                    throw ControlError("set shadow_mode: \"" + w[2] + "\" is not one of exact, fast, lut, illustrative, off, show");
+            }
+        } else if (c.setting == "exposure") {
+            if (c.value != "auto" && c.value != "show") {
+                const double x = parse_number(w[2], "set exposure");
+                if (!(x > 0.0) || x > 1e6) throw ControlError("set exposure: must be in (0, 1e6], not " + w[2]);
+            }
+        } else if (c.setting == "star_limit") {
+            if (c.value != "show") {
+                const double x = parse_number(w[2], "set star_limit");
+                if (x < -30.0 || x > 30.0) throw ControlError("set star_limit: must be -30..30, not " + w[2]);
+            }
+        } else {
+            throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure or star_limit");
+        }
+    } else {
+        throw ControlError("unknown command \"" + w[0] + "\"; " + control_help());
+    }
+    return c;
+}
+
+}  // namespace cupola

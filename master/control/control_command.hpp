@@ -1,0 +1,51 @@
+#pragma once
+// The master's control language: one command per line, from a local socket or standard input
+// (control_server). Words are separated by spaces; body names and keywords are case-insensitive.
+//
+//   goto <body> [seconds]          fly to the body and orbit it (default duration: input.goto_seconds)
+//   mode orbit|fly|walk [body]     navigation mode (orbit/walk: around/on the body, default the nearest)
+//   time rate <x>                  simulation seconds per show second (negative: backwards)
+//   time set <ISO-8601 UTC>        e.g. time set 2024-04-08T18:17:00Z
+//   play [show.json]               resume the show, or load and start one (relative: to the cluster config)
+//   pause | resume                 freeze / unfreeze the clock (a show's camera too)
+//   stop                           leave the show; the camera stays where it is, under manual control
+//   set shadow_mode <mode>         exact|fast|lut|illustrative|off, or "show" (the show's again)
+//   set exposure <x>|auto|show     fixed exposure, the cluster's (auto) exposure, or the show's
+//   set star_limit <mag>|show      faintest star drawn
+//   status                         one JSON line: frame, mode, time, rate, camera, show
+//   quit                           stop the show and the cluster
+//   help                           the list above
+// Every command is answered with one line: "ok <what happened>" or "error <what was wrong>".
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace cupola {
+
+// A line that is not a command: names the word that was wrong and why.
+struct ControlError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+enum class ControlVerb { Goto, Mode, TimeRate, TimeSet, Play, Pause, Resume, Stop, Set, Status, Quit, Help };
+
+struct ControlCommand {
+    ControlVerb verb = ControlVerb::Help;
+    std::string body;                // goto, mode (optional): as typed
+    std::optional<double> seconds;   // goto: flight duration
+    std::string nav_mode;            // mode: orbit | fly | walk
+    double rate = 1.0;               // time rate
+    double sim_time_s = 0.0;         // time set: seconds since J2000 TT
+    std::string utc;                 // time set: as typed
+    std::string show_file;           // play: as typed ("" = resume)
+    std::string setting;             // set: shadow_mode | exposure | star_limit
+    std::string value;               // set: the value as typed (lower case)
+};
+
+// Parses one line (without its newline). Throws ControlError on anything else.
+ControlCommand parse_control_line(const std::string& line);
+
+// The help text (one line per command, for "help").
+const std::string& control_help();
+
+}  // namespace cupola

@@ -1,0 +1,60 @@
+#pragma once
+// Where control commands come from: a local (Unix domain, stream) socket that any number of
+// clients (a console, a show-control system, a test) connect to, or the master's standard input.
+// A thread reads lines; the frame loop takes them once per frame (take()) and answers each with
+// one line (reply()). Lines longer than 1024 bytes are refused; a client that goes away is
+// forgotten, its pending replies dropped.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace cupola {
+
+struct ControlRequest {
+    uint64_t client = 0;     // whom to reply to
+    std::string line;        // without the newline
+    uint64_t received_ns = 0;  // monotonic_ns() when the line was complete
+};
+
+class ControlServer {
+public:
+    // path: a socket path (created with mode 0660; a stale socket file left by a dead master is
+    // replaced, a live one is an error), or "-" for standard input / standard output.
+    // Throws std::runtime_error naming the path and the reason when it cannot listen.
+    explicit ControlServer(const std::string& path);
+    ~ControlServer();
+    ControlServer(const ControlServer&) = delete;
+    ControlServer& operator=(const ControlServer&) = delete;
+
+    std::vector<ControlRequest> take();
+    void reply(uint64_t client, const std::string& line);
+    const std::string& path() const { return path_; }
+    uint64_t lines_refused() const { return refused_; }
+
+private:
+    struct Client {
+        uint64_t id;
+        int fd;           // read side
+        int out_fd;       // write side (stdout for stdin)
+        std::string buffer;
+        bool discarding = false;  // inside an over-long line
+    };
+    void loop();
+    void close_client(size_t index);
+
+    std::string path_;
+    int listen_fd_ = -1;
+    int wake_pipe_[2] = {-1, -1};
+    std::mutex mutex_;
+    std::vector<Client> clients_;
+    std::vector<ControlRequest> pending_;
+    uint64_t next_id_ = 1;
+    std::atomic<uint64_t> refused_{0};
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+};
+
+}  // namespace cupola

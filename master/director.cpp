@@ -1,0 +1,266 @@
+#include "director.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "config/config_error.hpp"
+#include "eclipse/shadow_casters.hpp"
+#include "navigation/nav_body.hpp"
+#include "scene/ephemeris.hpp"
+#include "scene/sim_time.hpp"
+
+namespace cupola {
+
+namespace {
+
+double frame_interval(const ClusterConfig& cluster, const ShowScript& show) {
+    return cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
+}
+
+NavigationTuning navigation_tuning(const InputConfig& in) {
+    NavigationTuning t;
+    t.speed_per_altitude = in.speed_per_altitude;
+    t.min_speed_m_s = in.min_speed_m_s;
+    t.turn_rate_deg_s = in.turn_rate_deg_s;
+    t.orbit_rate_deg_s = in.orbit_rate_deg_s;
+    return t;
+}
+
+ShaperTuning shaper_tuning(const InputConfig& in) {
+    ShaperTuning t;
+    t.dead_zone = in.dead_zone;
+    t.smoothing_s = in.smoothing_s;
+    return t;
+}
+
+bool any_motion(const NavAxes& a) {
+    return a.right != 0.0 || a.up != 0.0 || a.forward != 0.0 || a.pitch_up != 0.0 || a.yaw_left != 0.0 ||
+           a.roll_ccw != 0.0;
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+}  // namespace
+
+Director::Director(const ClusterConfig& cluster, const SceneConfig& scene, ShowScript show)
+    : cluster_(cluster),
+      scene_(scene),
+      show_(std::move(show)),
+      dt_(frame_interval(cluster, show_)),
+      shaper_(shaper_tuning(cluster.input)),
+      nav_(navigation_tuning(cluster.input)) {}
+
+double Director::show_time_at(uint64_t frame) const {
+    if (paused_) return show_base_;
+    return show_base_ + static_cast<double>(static_cast<int64_t>(frame - base_frame_)) * dt_;
+}
+
+double Director::live_sim_time_at(uint64_t frame) const {
+    if (paused_) return sim_base_;
+    return sim_base_ + static_cast<double>(static_cast<int64_t>(frame - base_frame_)) * dt_ * rate_;
+}
+
+double Director::sim_time_at(uint64_t frame) const {
+    return live_ ? live_sim_time_at(frame) : show_.evaluate(show_time_at(frame), scene_).sim_time_s;
+}
+
+double Director::show_rate_at(double show_time_s) const {
+    const double h = std::max(dt_, 1e-3);
+    return (show_.evaluate(show_time_s + h, scene_).sim_time_s - show_.evaluate(show_time_s, scene_).sim_time_s) / h;
+}
+
+void Director::rebase(uint64_t frame) {
+    show_base_ = show_time_at(frame);
+    sim_base_ = live_sim_time_at(frame);
+    base_frame_ = frame;
+}
+
+void Director::take_over(uint64_t frame, const char* why) {
+    if (live_) return;
+    const double t_show = show_time_at(frame);
+    const Snapshot s = show_.evaluate(t_show, scene_);
+    show_base_ = t_show;  // where "play" resumes
+    sim_base_ = s.sim_time_s;
+    rate_ = paused_ ? 1.0 : show_rate_at(t_show);
+    base_frame_ = frame;
+    live_settings_ = show_.settings_at(t_show);
+    const std::vector<NavBody> bodies = nav_bodies(scene_, s.bodies);
+    nav_.set_pose({s.camera_position_m, s.camera_orientation}, bodies);
+    // A ground observer keeps standing on the ground (and turning with the planet).
+    const auto& keys = show_.keyframes();
+    size_t i = 0;
+    while (i + 1 < keys.size() && keys[i + 1].at_s <= t_show) ++i;
+    if (keys[i].camera.observer && keys[i].camera.anchor)
+        nav_.set_mode(NavMode::SurfaceWalk, bodies, *keys[i].camera.anchor);
+    shaper_.reset();
+    live_ = true;
+    spdlog::info("director: {} takes over from the show at show time {:.3f} s (frame {}); clock rate {:g}", why,
+                 t_show, frame, rate_);
+}
+
+uint16_t Director::body_id(const std::string& name) const {
+    for (const auto& b : scene_.bodies)
+        if (lower(b.name) == lower(name)) return b.id;
+    std::string names;
+    for (const auto& b : scene_.bodies) names += (names.empty() ? "" : ", ") + b.name;
+    throw ControlError("no body named \"" + name + "\" in the scene (bodies: " + names + ")");
+}
+
+DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
+    const double step_dt =
+        last_frame_ && frame > *last_frame_ ? static_cast<double>(frame - *last_frame_) * dt_ : 0.0;
+    const NavAxes axes = shaper_.shape(input, step_dt > 0.0 ? step_dt : dt_);
+    const bool moved = any_motion(axes);
+    if (!live_ && moved && cluster_.input.takeover) take_over(frame, "the navigation device");
+
+    DirectedFrame out;
+    if (!live_) {
+        const double t_show = show_time_at(frame);
+        out.snapshot = show_.evaluate(t_show, scene_);
+        out.settings = show_.settings_at(t_show);
+    } else {
+        Snapshot& s = out.snapshot;
+        s.sim_time_s = live_sim_time_at(frame);
+        for (const auto& body : scene_.bodies) s.bodies.push_back(body_state(body, s.sim_time_s));
+        const CameraPose pose = nav_.step(moved ? axes : NavAxes{}, step_dt, nav_bodies(scene_, s.bodies));
+        s.camera_position_m = pose.position_m;
+        s.camera_orientation = pose.orientation;
+        out.settings = live_settings_;
+        out.input_used = moved;
+    }
+    if (shadow_override_) out.settings.shadow_mode = shadow_override_;
+    if (exposure_override_) out.settings.exposure = *exposure_override_;
+    if (star_limit_override_) out.settings.star_magnitude_limit = star_limit_override_;
+    out.snapshot.settings.flags =
+        with_shadow_mode(out.snapshot.settings.flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
+    out.input_report_ns = input.report_ns;
+    last_frame_ = frame;
+    return out;
+}
+
+std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
+    char buf[256];
+    switch (cmd.verb) {
+        case ControlVerb::Goto: {
+            const uint16_t id = body_id(cmd.body);
+            take_over(next, "goto");
+            const double t = live_sim_time_at(next);
+            std::vector<BodyState> states;
+            for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
+            const double secs = cmd.seconds.value_or(cluster_.input.goto_seconds);
+            nav_.fly_to(id, secs, nav_bodies(scene_, states));
+            std::snprintf(buf, sizeof buf, "goto %s: flying for %.3g s from frame %llu", scene_.bodies[id].name.c_str(),
+                          secs, static_cast<unsigned long long>(next));
+            return buf;
+        }
+        case ControlVerb::Mode: {
+            const NavMode m = cmd.nav_mode == "orbit" ? NavMode::Orbit
+                              : cmd.nav_mode == "walk" ? NavMode::SurfaceWalk
+                                                       : NavMode::FreeFly;
+            std::optional<uint16_t> target;
+            if (!cmd.body.empty()) target = body_id(cmd.body);
+            take_over(next, "mode");
+            const double t = live_sim_time_at(next);
+            std::vector<BodyState> states;
+            for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
+            nav_.set_mode(m, nav_bodies(scene_, states), target);
+            return "mode " + std::string(nav_mode_name(nav_.mode())) + " around " + scene_.bodies[nav_.anchor()].name +
+                   " from frame " + std::to_string(next);
+        }
+        case ControlVerb::TimeRate:
+            take_over(next, "time rate");
+            rebase(next);
+            rate_ = cmd.rate;
+            std::snprintf(buf, sizeof buf, "time rate %g from frame %llu", rate_, static_cast<unsigned long long>(next));
+            return buf;
+        case ControlVerb::TimeSet:
+            take_over(next, "time set");
+            rebase(next);
+            sim_base_ = cmd.sim_time_s;
+            return "time " + tt_to_utc_iso(sim_base_) + " at frame " + std::to_string(next);
+        case ControlVerb::Play: {
+            if (!cmd.show_file.empty()) {
+                const std::string path = resolve_path(cluster_.directory, cmd.show_file);
+                try {
+                    show_ = ShowScript::load(path, scene_);
+                } catch (const std::exception& e) {
+                    throw ControlError(std::string("play: ") + e.what());
+                }
+                show_base_ = 0.0;
+            } else if (!live_ && !paused_) {
+                return "already playing " + show_.file();
+            } else if (live_) {
+                // show_base_ still holds the show time where the show was left.
+            }
+            dt_ = frame_interval(cluster_, show_);
+            live_ = false;
+            paused_ = false;
+            base_frame_ = next;
+            std::snprintf(buf, sizeof buf, "playing %s from show time %.3f s at frame %llu", show_.file().c_str(),
+                          show_base_, static_cast<unsigned long long>(next));
+            return buf;
+        }
+        case ControlVerb::Pause:
+            rebase(next);
+            paused_ = true;
+            return "paused at frame " + std::to_string(next);
+        case ControlVerb::Resume:
+            rebase(next);
+            paused_ = false;
+            return "running from frame " + std::to_string(next);
+        case ControlVerb::Stop:
+            if (!live_) take_over(next, "stop");
+            return "manual control from frame " + std::to_string(next);
+        case ControlVerb::Set:
+            if (cmd.setting == "shadow_mode") {
+                if (cmd.value == "show") shadow_override_.reset();
+                else shadow_override_ = shadow_mode_from_name(cmd.value);
+            } else if (cmd.setting == "exposure") {
+                if (cmd.value == "show") exposure_override_.reset();
+                else if (cmd.value == "auto") exposure_override_ = std::optional<float>{};
+                else exposure_override_ = std::optional<float>(std::stof(cmd.value));
+            } else {
+                if (cmd.value == "show") star_limit_override_.reset();
+                else star_limit_override_ = std::stof(cmd.value);
+            }
+            return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
+        case ControlVerb::Status:
+            return status(next).dump();
+        case ControlVerb::Quit:
+            quit_ = true;
+            return "quit before frame " + std::to_string(next);
+        case ControlVerb::Help:
+            return control_help();
+    }
+    return "";
+}
+
+nlohmann::json Director::status(uint64_t next) const {
+    const double t = sim_time_at(next);
+    nlohmann::json j{{"frame", next},
+                     {"mode", live_ ? "live" : "show"},
+                     {"paused", paused_},
+                     {"show", show_.file()},
+                     {"show_time_s", show_time_at(next)},
+                     {"sim_time_s", t},
+                     {"utc", tt_to_utc_iso(t)},
+                     {"rate", paused_ ? 0.0 : live_ ? rate_ : show_rate_at(show_time_at(next))}};
+    if (live_) {
+        std::vector<BodyState> states;
+        for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
+        const auto bodies = nav_bodies(scene_, states);
+        j["navigation"] = {{"mode", nav_mode_name(nav_.mode())},
+                           {"anchor", scene_.bodies[nav_.anchor()].name},
+                           {"altitude_m", nav_.altitude_m(bodies)},
+                           {"flying", nav_.flying()}};
+    }
+    return j;
+}
+
+}  // namespace cupola
