@@ -12,6 +12,7 @@
 #include "frame_barrier.hpp"
 #include "input/input_hub.hpp"
 #include "input/input_latency.hpp"
+#include "input/usb_input.hpp"
 #include "master_counters.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
@@ -98,6 +99,18 @@ int MasterNode::run() {
         control = std::make_unique<ControlServer>(options_.control);
         spdlog::info("master: control commands on {}", options_.control == "-" ? "standard input" : options_.control);
     }
+    // Navigation devices: a thread reads them (hotplug included) into the hub; each frame reads
+    // the hub once.
+    InputHub input_hub;
+    InputLatency input_latency;
+    std::unique_ptr<UsbInput> usb;
+    if (cluster_.input.usb) {
+        std::vector<DeviceModel> table = default_device_table();
+        if (!cluster_.input.device_table_file.empty())
+            table = merge_device_tables(load_device_table(cluster_.input.device_table_file), table);
+        usb = std::make_unique<UsbInput>(std::move(table), input_hub);
+        if (!usb->start()) usb.reset();
+    }
 
     std::vector<int> ids;
     for (const auto& c : cluster_.channels) ids.push_back(c.id);
@@ -114,6 +127,7 @@ int MasterNode::run() {
                               {"frame", current_frame},
                               {"live", barrier.live_count()},
                               {"master", counters.to_json()},
+                              {"usb", usb ? usb->counters().to_json() : nlohmann::json(nullptr)},
                               {"wire", wire.counters().to_json()}};
     };
 
@@ -229,8 +243,7 @@ int MasterNode::run() {
 
     // Who drives camera and clock (show or presenter).
     Director director(cluster_, scene_, show_);
-    InputHub input_hub;
-    InputLatency input_latency;
+
     auto run_commands = [&](uint64_t next_frame) {
         if (!control) return;
         for (const ControlRequest& req : control->take()) {
