@@ -18,9 +18,11 @@
 #include "master_node.hpp"
 #include "scene/ephemeris.hpp"
 #include "scene/sim_time.hpp"
+#include "support/control_client.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
+using test::ControlClient;
 
 namespace {
 
@@ -32,42 +34,6 @@ std::string parse_error(const std::string& line) {
     }
     return "(accepted)";
 }
-
-// A client of the control socket: sends lines, reads reply lines.
-class ControlClient {
-public:
-    explicit ControlClient(const std::string& path) {
-        fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-        sockaddr_un a{};
-        a.sun_family = AF_UNIX;
-        std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
-        connected_ = connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
-        timeval tv{5, 0};
-        setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    }
-    ~ControlClient() { close(fd_); }
-    bool connected() const { return connected_; }
-    void send_raw(const std::string& s) { ASSERT_EQ(send(fd_, s.data(), s.size(), MSG_NOSIGNAL), static_cast<ssize_t>(s.size())); }
-    std::string read_line() {
-        while (true) {
-            const auto nl = pending_.find('\n');
-            if (nl != std::string::npos) {
-                std::string l = pending_.substr(0, nl);
-                pending_.erase(0, nl + 1);
-                return l;
-            }
-            char buf[1024];
-            const ssize_t n = recv(fd_, buf, sizeof buf, 0);
-            if (n <= 0) return "(no reply)";
-            pending_.append(buf, static_cast<size_t>(n));
-        }
-    }
-
-private:
-    int fd_ = -1;
-    bool connected_ = false;
-    std::string pending_;
-};
 
 // Waits until the server has `n` requests and returns them.
 std::vector<ControlRequest> take_n(ControlServer& server, size_t n) {
@@ -152,9 +118,9 @@ TEST(ControlServer, LinesFromSeveralClientsAndRepliesToEach) {
     ControlClient a(path), b(path);
     ASSERT_TRUE(a.connected());
     ASSERT_TRUE(b.connected());
-    a.send_raw("goto moon\ntime ra");
-    b.send_raw("pause\r\n");
-    a.send_raw("te 10\n");  // a line split over two writes
+    ASSERT_TRUE(a.send_raw("goto moon\ntime ra"));
+    ASSERT_TRUE(b.send_raw("pause\r\n"));
+    ASSERT_TRUE(a.send_raw("te 10\n"));  // a line split over two writes
     auto reqs = take_n(server, 3);
     ASSERT_EQ(reqs.size(), 3u);
     std::vector<std::string> lines;
@@ -168,7 +134,7 @@ TEST(ControlServer, LinesFromSeveralClientsAndRepliesToEach) {
     EXPECT_EQ(a2, "echo time rate 10");
     EXPECT_EQ(b1, "echo pause");
     // An over-long line is refused as one line (and answered), not split into commands.
-    a.send_raw(std::string(5000, 'x') + "\nstatus\n");
+    ASSERT_TRUE(a.send_raw(std::string(5000, 'x') + "\nstatus\n"));
     reqs = take_n(server, 2);
     ASSERT_EQ(reqs.size(), 2u);
     EXPECT_GT(reqs[0].line.size(), 1024u);

@@ -2,11 +2,7 @@
 // switch, the cupola-control tool and quit, checked in the master's snapshots (events file) and
 // in every channel's frames (the snapshot hash each frame file records).
 #include <gtest/gtest.h>
-#include <sys/socket.h>
-#include <sys/un.h>
-#include <unistd.h>
 
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -16,6 +12,7 @@
 #include "image/frame_image.hpp"
 #include "scene/ephemeris.hpp"
 #include "support/cluster_fixture.hpp"
+#include "support/control_client.hpp"
 #include "support/loopback_run.hpp"
 #include "support/test_support.hpp"
 #include "util/child_process.hpp"
@@ -23,40 +20,6 @@
 using namespace cupola;
 
 namespace {
-
-class Console {
-public:
-    explicit Console(const std::string& path) {
-        fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-        sockaddr_un a{};
-        a.sun_family = AF_UNIX;
-        std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
-        connected_ = connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
-        timeval tv{60, 0};
-        setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    }
-    ~Console() { close(fd_); }
-    bool connected() const { return connected_; }
-    std::string command(const std::string& line) {
-        const std::string out = line + "\n";
-        if (send(fd_, out.data(), out.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(out.size())) return "(send failed)";
-        while (pending_.find('\n') == std::string::npos) {
-            char buf[4096];
-            const ssize_t n = recv(fd_, buf, sizeof buf, 0);
-            if (n <= 0) return "(no reply)";
-            pending_.append(buf, static_cast<size_t>(n));
-        }
-        const auto nl = pending_.find('\n');
-        std::string reply = pending_.substr(0, nl);
-        pending_.erase(0, nl + 1);
-        return reply;
-    }
-
-private:
-    int fd_ = -1;
-    bool connected_ = false;
-    std::string pending_;
-};
 
 // "... frame 123" -> 123
 uint64_t frame_in(const std::string& reply) {
@@ -87,7 +50,7 @@ TEST(ControlLoopback, GotoTimeRateSettingsAndQuitReachEveryChannel) {
                           dir + "/loopback.log", {"DISPLAY", "WAYLAND_DISPLAY", "SPDLOG_LEVEL"});
     ASSERT_TRUE(test::wait_until([&] { return std::filesystem::exists(sock); }, std::chrono::seconds(60)))
         << test::read_text(dir + "/loopback.log");
-    Console console(sock);
+    test::ControlClient console(sock, 60);
     ASSERT_TRUE(console.connected());
     auto frames_rendered = [&](uint64_t n) {
         return test::wait_until([&] { return frames_of(events).size() >= n; }, std::chrono::seconds(120));
