@@ -41,6 +41,15 @@ bool any_motion(const NavAxes& a) {
            a.roll_ccw != 0.0;
 }
 
+// UTC of a simulation time, or a note where ERFA's calendar ends (a clock run far away).
+std::string utc_or_note(double t) {
+    try {
+        return tt_to_utc_iso(t);
+    } catch (const std::exception&) {
+        return "(outside the calendar)";
+    }
+}
+
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
@@ -57,7 +66,7 @@ Director::Director(const ClusterConfig& cluster, const SceneConfig& scene, ShowS
       nav_(navigation_tuning(cluster.input)) {}
 
 double Director::show_time_at(uint64_t frame) const {
-    if (paused_) return show_base_;
+    if (paused_ || live_) return show_base_;  // live: where the show was left
     return show_base_ + static_cast<double>(static_cast<int64_t>(frame - base_frame_)) * dt_;
 }
 
@@ -76,7 +85,7 @@ double Director::show_rate_at(double show_time_s) const {
 }
 
 void Director::rebase(uint64_t frame) {
-    show_base_ = show_time_at(frame);
+    show_base_ = show_time_at(frame);  // unchanged while live
     sim_base_ = live_sim_time_at(frame);
     base_frame_ = frame;
 }
@@ -87,7 +96,7 @@ void Director::take_over(uint64_t frame, const char* why) {
     const Snapshot s = show_.evaluate(t_show, scene_);
     show_base_ = t_show;  // where "play" resumes
     sim_base_ = s.sim_time_s;
-    rate_ = paused_ ? 1.0 : show_rate_at(t_show);
+    rate_ = show_rate_at(t_show);  // paused or not: resume runs at the show's rate
     base_frame_ = frame;
     live_settings_ = show_.settings_at(t_show);
     const std::vector<NavBody> bodies = nav_bodies(scene_, s.bodies);
@@ -117,7 +126,13 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
         last_frame_ && frame > *last_frame_ ? static_cast<double>(frame - *last_frame_) * dt_ : 0.0;
     const NavAxes axes = shaper_.shape(input, step_dt > 0.0 ? step_dt : dt_);
     const bool moved = any_motion(axes);
-    if (!live_ && moved && cluster_.input.takeover) take_over(frame, "the navigation device");
+    // Only a device held outside its dead zone now takes over (not a smoothing tail).
+    const NavAxes& r = input.axes;
+    const double dz = cluster_.input.dead_zone;
+    const bool held = input.connected && (std::abs(r.right) > dz || std::abs(r.up) > dz || std::abs(r.forward) > dz ||
+                                          std::abs(r.pitch_up) > dz || std::abs(r.yaw_left) > dz ||
+                                          std::abs(r.roll_ccw) > dz);
+    if (!live_ && held && moved && cluster_.input.takeover) take_over(frame, "the navigation device");
 
     DirectedFrame out;
     if (!live_) {
@@ -134,12 +149,14 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
         out.settings = live_settings_;
         out.input_used = moved;
     }
+    // A fresh report (not one already counted) dates the input of this frame.
+    if (input.reports != last_reports_) out.input_report_ns = input.report_ns;
+    last_reports_ = input.reports;
     if (shadow_override_) out.settings.shadow_mode = shadow_override_;
     if (exposure_override_) out.settings.exposure = *exposure_override_;
     if (star_limit_override_) out.settings.star_magnitude_limit = star_limit_override_;
     out.snapshot.settings.flags =
         with_shadow_mode(out.snapshot.settings.flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
-    out.input_report_ns = input.report_ns;
     last_frame_ = frame;
     return out;
 }
@@ -183,7 +200,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             take_over(next, "time set");
             rebase(next);
             sim_base_ = cmd.sim_time_s;
-            return "time " + tt_to_utc_iso(sim_base_) + " at frame " + std::to_string(next);
+            return "time " + utc_or_note(sim_base_) + " at frame " + std::to_string(next);
         case ControlVerb::Play: {
             if (!cmd.show_file.empty()) {
                 const std::string path = resolve_path(cluster_.directory, cmd.show_file);
@@ -202,6 +219,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             live_ = false;
             paused_ = false;
             base_frame_ = next;
+            shaper_.reset();  // a device's smoothing tail must not take the show over again
             std::snprintf(buf, sizeof buf, "playing %s from show time %.3f s at frame %llu", show_.file().c_str(),
                           show_base_, static_cast<unsigned long long>(next));
             return buf;
@@ -224,10 +242,10 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             } else if (cmd.setting == "exposure") {
                 if (cmd.value == "show") exposure_override_.reset();
                 else if (cmd.value == "auto") exposure_override_ = std::optional<float>{};
-                else exposure_override_ = std::optional<float>(std::stof(cmd.value));
+                else exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
             } else {
                 if (cmd.value == "show") star_limit_override_.reset();
-                else star_limit_override_ = std::stof(cmd.value);
+                else star_limit_override_ = static_cast<float>(cmd.number.value());
             }
             return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
         case ControlVerb::Status:
@@ -249,7 +267,7 @@ nlohmann::json Director::status(uint64_t next) const {
                      {"show", show_.file()},
                      {"show_time_s", show_time_at(next)},
                      {"sim_time_s", t},
-                     {"utc", tt_to_utc_iso(t)},
+                     {"utc", utc_or_note(t)},
                      {"rate", paused_ ? 0.0 : live_ ? rate_ : show_rate_at(show_time_at(next))}};
     if (live_) {
         std::vector<BodyState> states;

@@ -79,6 +79,7 @@ private:
     double rate_ = 1.0;
     uint64_t base_frame_ = 0;
     std::optional<uint64_t> last_frame_;  // the last frame produced
+    uint64_t last_reports_ = 0;           // the devices' report count at the last frame
     ShowSettings live_settings_;          // Live mode: the show's settings when it stopped
     // set commands, over the show's or live settings (none: not overridden)
     std::optional<ShadowMode> shadow_override_;

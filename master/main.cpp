@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
         g_master = &master;
         std::signal(SIGINT, on_signal);
         std::signal(SIGTERM, on_signal);
+        std::signal(SIGPIPE, SIG_IGN);  // a control client that went away is an error return, not a kill
         return master.run();
     });
 }

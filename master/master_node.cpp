@@ -77,7 +77,8 @@ public:
         if (!out_) throw std::runtime_error(path + ": cannot open the events file for writing");
     }
     void write(const nlohmann::json& j) {
-        if (out_) out_ << j.dump() << '\n' << std::flush;
+        // Text from outside (control lines) may not be UTF-8: replaced, never fatal.
+        if (out_) out_ << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n' << std::flush;
     }
 
 private:
@@ -129,6 +130,26 @@ int MasterNode::run() {
                               {"master", counters.to_json()},
                               {"usb", usb ? usb->counters().to_json() : nlohmann::json(nullptr)},
                               {"wire", wire.counters().to_json()}};
+    };
+
+    // Who drives camera and clock (show or presenter); commands from the control channel.
+    Director director(cluster_, scene_, show_);
+    auto run_commands = [&](uint64_t next_frame) {
+        if (!control) return;
+        for (const ControlRequest& req : control->take()) {
+            std::string reply;
+            try {
+                const ControlCommand cmd = parse_control_line(req.line);
+                reply = "ok " + director.apply(cmd, next_frame);
+            } catch (const std::exception& e) {  // ControlError, or anything a command ran into
+                reply = std::string("error ") + e.what();
+                ++counters.control_errors;
+            }
+            ++counters.control_commands;
+            spdlog::info("master: control \"{}\" -> {}", req.line.substr(0, 200), reply.substr(0, 200));
+            events.write({{"event", "control"}, {"frame", next_frame}, {"line", req.line.substr(0, 200)}, {"reply", reply}});
+            control->reply(req.client, reply);
+        }
     };
 
     // Returns true when the channel (re)joined and must be sent the current snapshot again.
@@ -213,7 +234,9 @@ int MasterNode::run() {
         std::map<int, FrameReport> unused;
         const auto until = Clock::now() + milliseconds(cluster_.network.hello_wait_ms);
         spdlog::info("master: waiting up to {} ms for {} channel(s)", cluster_.network.hello_wait_ms, ids.size());
-        while (barrier.live_count() < static_cast<int>(ids.size()) && Clock::now() < until && !stop_requested_) {
+        while (barrier.live_count() < static_cast<int>(ids.size()) && Clock::now() < until && !stop_requested_ &&
+               !director.quit_requested()) {
+            run_commands(0);  // status, settings, quit: answered while the channels join
             auto left = std::chrono::duration_cast<milliseconds>(until - Clock::now()).count();
             if (auto m = wire.receive(static_cast<int>(std::min<long long>(left, 100)))) handle(*m, 0, 0, unused);
             stats.tick(stats_json);
@@ -241,26 +264,6 @@ int MasterNode::run() {
         }
     }
 
-    // Who drives camera and clock (show or presenter).
-    Director director(cluster_, scene_, show_);
-
-    auto run_commands = [&](uint64_t next_frame) {
-        if (!control) return;
-        for (const ControlRequest& req : control->take()) {
-            std::string reply;
-            try {
-                const ControlCommand cmd = parse_control_line(req.line);
-                reply = "ok " + director.apply(cmd, next_frame);
-            } catch (const ControlError& e) {
-                reply = std::string("error ") + e.what();
-                ++counters.control_errors;
-            }
-            ++counters.control_commands;
-            spdlog::info("master: control \"{}\" -> {}", req.line.substr(0, 200), reply.substr(0, 200));
-            events.write({{"event", "control"}, {"frame", next_frame}, {"line", req.line.substr(0, 200)}, {"reply", reply}});
-            control->reply(req.client, reply);
-        }
-    };
 
     GlareSharing glare_sharing(cluster_);
     std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility

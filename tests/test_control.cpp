@@ -104,7 +104,8 @@ TEST(ControlCommand, ErrorsSayWhatWasWrong) {
     EXPECT_NE(parse_error("goto moon -1").find("0..600"), std::string::npos);
     EXPECT_NE(parse_error("mode swim").find("\"swim\""), std::string::npos);
     EXPECT_NE(parse_error("set shadow_mode sharp").find("\"sharp\""), std::string::npos);
-    EXPECT_NE(parse_error("set exposure 0").find("(0, 1e6]"), std::string::npos);
+    EXPECT_NE(parse_error("set exposure 0").find("[1e-12, 1e6]"), std::string::npos);
+    EXPECT_NE(parse_error("set exposure 1e-50").find("[1e-12, 1e6]"), std::string::npos);  // not a float
     EXPECT_NE(parse_error("set gamma 2").find("\"gamma\""), std::string::npos);
     EXPECT_NE(parse_error("pause now").find("usage"), std::string::npos);
     EXPECT_NE(parse_error(std::string(2000, 'a')).find("too long"), std::string::npos);
@@ -251,6 +252,7 @@ TEST_F(DirectorFixture, DeviceTakesOverAndUnplugStopsTheCamera) {
     }
     dev.axes.forward = 1.0;
     dev.report_ns = 12345;
+    dev.reports = 1;  // a fresh report
     DirectedFrame d5 = director->frame(5, dev);
     EXPECT_TRUE(director->live());
     EXPECT_TRUE(d5.input_used);
@@ -291,7 +293,10 @@ TEST_F(DirectorFixture, PlayStopSettingsAndQuit) {
     d = director->frame(4, no_device);
     finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, 4, director->frame_interval_s(), nullptr, nullptr);
     EXPECT_FLOAT_EQ(d.snapshot.settings.exposure, static_cast<float>(cluster.output.exposure));
-    // play resumes the show where it was left (show time 1 frame), now at frame 5.
+    // Live clock changes do not move the show's place: play resumes the show where it was left
+    // (show time 1 frame), now at frame 5.
+    apply("time rate 10", 4);
+    director->frame(4, no_device);
     apply("play", 5);
     EXPECT_FALSE(director->live());
     EXPECT_EQ(director->frame(5, no_device).snapshot.sim_time_s,
@@ -305,4 +310,24 @@ TEST_F(DirectorFixture, PlayStopSettingsAndQuit) {
     EXPECT_FALSE(director->quit_requested());
     apply("quit", 8);
     EXPECT_TRUE(director->quit_requested());
+}
+
+TEST(ControlServer, InputThatEndsIsStillAnswered) {
+    // A client that sends its commands and half-closes (printf ... | nc -N) gets its replies.
+    const std::string dir = test::scratch_dir("control_eof");
+    const std::string path = dir + "/control.sock";
+    ControlServer server(path);
+    ControlClient a(path);
+    ASSERT_TRUE(a.connected());
+    ASSERT_TRUE(a.send_raw("status\nquit\n"));
+    // Half-close our side: the server sees the end of input before it answers.
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(shutdown(a.fd(), SHUT_WR), 0);
+    auto reqs = take_n(server, 2);
+    ASSERT_EQ(reqs.size(), 2u);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the reader has seen the end
+    for (const auto& r : reqs) server.reply(r.client, "ok " + r.line);
+    EXPECT_EQ(a.read_line(), "ok status");
+    EXPECT_EQ(a.read_line(), "ok quit");
+    EXPECT_EQ(a.read_line(), "(no reply)");  // then the server closed the connection
 }

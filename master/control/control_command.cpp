@@ -115,12 +115,14 @@ ControlCommand parse_control_line(const std::string& line) {
         } else if (c.setting == "exposure") {
             if (c.value != "auto" && c.value != "show") {
                 const double x = parse_number(w[2], "set exposure");
-                if (!(x > 0.0) || x > 1e6) throw ControlError("set exposure: must be in (0, 1e6], not " + w[2]);
+                if (!(x >= 1e-12) || x > 1e6) throw ControlError("set exposure: must be in [1e-12, 1e6], not " + w[2]);
+                c.number = x;
             }
         } else if (c.setting == "star_limit") {
             if (c.value != "show") {
                 const double x = parse_number(w[2], "set star_limit");
                 if (x < -30.0 || x > 30.0) throw ControlError("set star_limit: must be -30..30, not " + w[2]);
+                c.number = x;
             }
         } else {
             throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure or star_limit");

@@ -40,6 +40,7 @@ struct ControlCommand {
     std::string show_file;           // play: as typed ("" = resume)
     std::string setting;             // set: shadow_mode | exposure | star_limit
     std::string value;               // set: the value as typed (lower case)
+    std::optional<double> number;    // set exposure / star_limit: the value when it is a number
 };
 
 // Parses one line (without its newline). Throws ControlError on anything else.

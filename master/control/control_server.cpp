@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
@@ -33,8 +34,19 @@ sockaddr_un socket_address(const std::string& path) {
 
 ControlServer::ControlServer(const std::string& path) : path_(path) {
     if (pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw std::runtime_error("control: pipe: " + std::string(std::strerror(errno)));
+    try {
+        open_listener(path);
+    } catch (...) {
+        close(wake_pipe_[0]);
+        close(wake_pipe_[1]);
+        throw;
+    }
+    thread_ = std::thread([this] { loop(); });
+}
+
+void ControlServer::open_listener(const std::string& path) {
     if (path == "-") {
-        clients_.push_back({next_id_++, STDIN_FILENO, STDOUT_FILENO, {}, false});
+        clients_.push_back({next_id_++, STDIN_FILENO, STDOUT_FILENO, true});
     } else {
         const sockaddr_un addr = socket_address(path);
         struct stat st{};
@@ -57,7 +69,6 @@ ControlServer::ControlServer(const std::string& path) : path_(path) {
         }
         chmod(path.c_str(), 0660);
     }
-    thread_ = std::thread([this] { loop(); });
 }
 
 ControlServer::~ControlServer() {
@@ -65,7 +76,7 @@ ControlServer::~ControlServer() {
     [[maybe_unused]] auto n = write(wake_pipe_[1], "x", 1);
     if (thread_.joinable()) thread_.join();
     for (auto& c : clients_)
-        if (c.fd != STDIN_FILENO) close(c.fd);
+        if (!c.stdio) close(c.fd);
     if (listen_fd_ >= 0) {
         close(listen_fd_);
         unlink(path_.c_str());
@@ -83,30 +94,31 @@ std::vector<ControlRequest> ControlServer::take() {
 
 void ControlServer::reply(uint64_t client, const std::string& line) {
     std::lock_guard lock(mutex_);
-    for (auto& c : clients_) {
+    for (size_t i = 0; i < clients_.size(); ++i) {
+        Client& c = clients_[i];
         if (c.id != client) continue;
+        if (c.outstanding > 0) --c.outstanding;
         const std::string text = line + "\n";
-        size_t done = 0;
-        // Replies are short; a client that does not read for long enough to fill its socket
-        // buffer loses replies rather than stalling the frame loop.
-        while (done < text.size()) {
-            const ssize_t n = c.out_fd == STDOUT_FILENO
-                                  ? write(c.out_fd, text.data() + done, text.size() - done)
-                                  : send(c.out_fd, text.data() + done, text.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT);
-            if (n <= 0) {
-                if (n < 0 && errno == EINTR) continue;
-                spdlog::warn("control: reply to client {} lost ({})", client, n < 0 ? std::strerror(errno) : "closed");
-                break;
-            }
-            done += static_cast<size_t>(n);
+        // Never block the frame loop: a reply goes out whole at once or is lost. A socket client
+        // that cannot take it is disconnected (a half-written line would garble the next one).
+        pollfd p{c.out_fd, POLLOUT, 0};
+        ssize_t n = -1;
+        if (poll(&p, 1, 0) == 1 && (p.revents & POLLOUT))
+            n = c.stdio ? write(c.out_fd, text.data(), text.size())
+                        : send(c.out_fd, text.data(), text.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (n != static_cast<ssize_t>(text.size())) {
+            spdlog::warn("control: reply to client {} lost ({})", client,
+                         n < 0 ? (errno ? std::strerror(errno) : "not writable") : "partly written");
+            if (!c.stdio) shutdown(c.fd, SHUT_RDWR);  // the reader sees the end and forgets it
         }
+        if (c.eof && c.outstanding == 0) close_client(i);  // its input ended: all answered now
         return;
     }
 }
 
 void ControlServer::close_client(size_t index) {
     Client& c = clients_[index];
-    if (c.fd != STDIN_FILENO) close(c.fd);
+    if (!c.stdio) close(c.fd);
     spdlog::debug("control: client {} left", c.id);
     clients_.erase(clients_.begin() + static_cast<long>(index));
 }
@@ -120,6 +132,7 @@ void ControlServer::loop() {
             fds.push_back({wake_pipe_[0], POLLIN, 0});
             if (listen_fd_ >= 0) fds.push_back({listen_fd_, POLLIN, 0});
             for (const auto& c : clients_) {
+                if (c.eof || c.outstanding >= kMaxOutstanding) continue;
                 fds.push_back({c.fd, POLLIN, 0});
                 ids.push_back(c.id);
             }
@@ -135,6 +148,10 @@ void ControlServer::loop() {
             first_client = 2;
             if (fds[1].revents & POLLIN) {
                 const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+                if (fd < 0 && errno != EAGAIN && errno != EINTR) {
+                    spdlog::warn("control: accept: {}", std::strerror(errno));  // e.g. out of descriptors
+                    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                }
                 if (fd >= 0) {
                     std::lock_guard lock(mutex_);
                     if (clients_.size() >= kMaxClients) {
@@ -142,23 +159,24 @@ void ControlServer::loop() {
                         [[maybe_unused]] auto n = send(fd, msg, std::strlen(msg), MSG_NOSIGNAL | MSG_DONTWAIT);
                         close(fd);
                     } else {
-                        clients_.push_back({next_id_++, fd, fd, {}, false});
+                        clients_.push_back({next_id_++, fd, fd, false});
                         spdlog::debug("control: client {} connected", clients_.back().id);
                     }
                 }
             }
         }
         for (size_t i = first_client; i < fds.size(); ++i) {
-            if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+            if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL))) continue;
             char buf[2048];
-            const ssize_t n = read(fds[i].fd, buf, sizeof buf);
+            const ssize_t n = (fds[i].revents & POLLNVAL) ? 0 : read(fds[i].fd, buf, sizeof buf);
             std::lock_guard lock(mutex_);
             size_t idx = 0;
             while (idx < clients_.size() && clients_[idx].id != ids[i - first_client]) ++idx;
             if (idx == clients_.size()) continue;
             if (n <= 0) {
                 if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-                close_client(idx);
+                if (clients_[idx].outstanding == 0) close_client(idx);
+                else clients_[idx].eof = true;  // answered first, then forgotten (reply())
                 continue;
             }
             Client& c = clients_[idx];
@@ -169,9 +187,11 @@ void ControlServer::loop() {
                         c.discarding = false;
                         ++refused_;
                         pending_.push_back({c.id, std::string(kMaxLine + 1, 'x'), monotonic_ns()});  // answered as too long
+                        ++c.outstanding;
                     } else {
                         if (!c.buffer.empty() && c.buffer.back() == '\r') c.buffer.pop_back();
                         pending_.push_back({c.id, std::move(c.buffer), monotonic_ns()});
+                        ++c.outstanding;
                     }
                     c.buffer.clear();
                 } else if (!c.discarding) {

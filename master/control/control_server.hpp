@@ -3,7 +3,9 @@
 // clients (a console, a show-control system, a test) connect to, or the master's standard input.
 // A thread reads lines; the frame loop takes them once per frame (take()) and answers each with
 // one line (reply()). Lines longer than 1024 bytes are refused; a client that goes away is
-// forgotten, its pending replies dropped.
+// forgotten, its pending replies dropped; one whose input ended (stdin at EOF, a half-closed
+// socket) is kept until its lines are answered. Replies never block the frame loop: a client that
+// does not read loses them (and, on a socket, the connection).
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -39,9 +41,15 @@ private:
         uint64_t id;
         int fd;           // read side
         int out_fd;       // write side (stdout for stdin)
+        bool stdio;       // standard input / output: never closed here
         std::string buffer;
         bool discarding = false;  // inside an over-long line
+        bool eof = false;         // no more input: kept until its pending lines are answered
+        size_t outstanding = 0;   // lines taken or pending, not answered yet
     };
+    // Clients with more unanswered lines than this are not read until the frame loop catches up.
+    static constexpr size_t kMaxOutstanding = 64;
+    void open_listener(const std::string& path);
     void loop();
     void close_client(size_t index);
 

@@ -15,7 +15,7 @@ public:
     // Returns the latency in milliseconds and keeps it.
     double add(uint64_t report_ns, uint64_t sent_ns) {
         const double ms = sent_ns > report_ns ? static_cast<double>(sent_ns - report_ns) / 1e6 : 0.0;
-        samples_.push_back(ms);
+        if (samples_.size() < kMaxSamples) samples_.push_back(ms);  // a long show keeps the first million
         return ms;
     }
     size_t count() const { return samples_.size(); }
@@ -32,6 +32,7 @@ public:
     }
 
 private:
+    static constexpr size_t kMaxSamples = 1000000;
     std::vector<double> samples_;
 };
 

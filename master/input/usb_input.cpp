@@ -155,7 +155,7 @@ struct UsbInput::Impl {
     // Devices that could not be opened. Denied access is tried again only when the device node
     // changes; other failures (busy, odd descriptors) at every rescan. Either is logged once.
     struct Refusal {
-        bool access = false;
+        bool access = false;  // denied access (or a device that failed while read): retried when its node changes
         NodeStamp node;
     };
     std::map<BusAddress, Refusal> refused;
@@ -426,6 +426,8 @@ void LIBUSB_CALL UsbInput::Impl::on_transfer(libusb_transfer* t) {
         default:  // ERROR, STALL, OVERFLOW
             self.bump(&UsbInputCounters::transfer_errors);
             if (++d.consecutive_errors >= 20) {
+                // Not reopened at every rescan: only after a replug (a new device node).
+                self.refused[d.where] = Refusal{true, stamp_of(devnode_path(d.where.bus, d.where.address))};
                 self.begin_close(d,
                                  std::string("20 transfer errors in a row, the last: ") + libusb_error_name(t->status));
                 return;
@@ -463,7 +465,9 @@ void UsbInput::Impl::finish_closing(bool force) {
         }
         if (d.claimed) libusb_release_interface(d.handle, d.interface_number);  // reattaches the kernel driver
         libusb_close(d.handle);  // also drops a transfer that never came back
-        libusb_free_transfer(d.transfer);
+        // libusb forbids freeing a transfer still in flight: one that never came back is leaked.
+        if (!d.in_flight) libusb_free_transfer(d.transfer);
+        else spdlog::warn("usb input: {}: a transfer did not come back after cancel; left allocated", d.key);
         if (d.own_fd >= 0) ::close(d.own_fd);
         bump(&UsbInputCounters::devices_closed);
         spdlog::info("usb input: released {} \"{}\" ({})", d.model->name, d.key, d.close_reason);

@@ -28,6 +28,7 @@ public:
     ControlClient& operator=(const ControlClient&) = delete;
 
     bool connected() const { return connected_; }
+    int fd() const { return fd_; }
     bool send_raw(const std::string& s) {
         return send(fd_, s.data(), s.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(s.size());
     }
