@@ -134,12 +134,33 @@ int MasterNode::run() {
 
     // Who drives camera and clock (show or presenter); commands from the control channel.
     Director director(cluster_, scene_, show_);
-    auto run_commands = [&](uint64_t next_frame) {
+    // Before the first frame (the channels still joining, the start frame not known yet) only
+    // status, help and quit are answered; other commands wait for the first frame, and so does
+    // everything a client sent after one of them (replies stay in the order of the commands).
+    std::vector<ControlRequest> deferred;
+    std::set<uint64_t> deferring_clients;
+    auto run_commands = [&](uint64_t next_frame, bool starting) {
         if (!control) return;
-        for (const ControlRequest& req : control->take()) {
+        std::vector<ControlRequest> requests;
+        if (!starting) {
+            requests.swap(deferred);
+            deferring_clients.clear();
+        }
+        for (auto& r : control->take()) requests.push_back(std::move(r));
+        for (const ControlRequest& req : requests) {
             std::string reply;
             try {
+                if (starting && deferring_clients.count(req.client)) {
+                    deferred.push_back(req);
+                    continue;
+                }
                 const ControlCommand cmd = parse_control_line(req.line);
+                if (starting && cmd.verb != ControlVerb::Status && cmd.verb != ControlVerb::Help &&
+                    cmd.verb != ControlVerb::Quit) {
+                    deferred.push_back(req);
+                    deferring_clients.insert(req.client);
+                    continue;
+                }
                 reply = "ok " + director.apply(cmd, next_frame);
             } catch (const std::exception& e) {  // ControlError, or anything a command ran into
                 reply = std::string("error ") + e.what();
@@ -236,7 +257,7 @@ int MasterNode::run() {
         spdlog::info("master: waiting up to {} ms for {} channel(s)", cluster_.network.hello_wait_ms, ids.size());
         while (barrier.live_count() < static_cast<int>(ids.size()) && Clock::now() < until && !stop_requested_ &&
                !director.quit_requested()) {
-            run_commands(0);  // status, settings, quit: answered while the channels join
+            run_commands(0, true);  // status and quit answered while the channels join
             auto left = std::chrono::duration_cast<milliseconds>(until - Clock::now()).count();
             if (auto m = wire.receive(static_cast<int>(std::min<long long>(left, 100)))) handle(*m, 0, 0, unused);
             stats.tick(stats_json);
@@ -272,7 +293,7 @@ int MasterNode::run() {
     uint64_t frames_incomplete = 0;
     for (uint64_t frame = start_frame; !stop_requested_ && (!options_.frames || frame < *options_.frames); ++frame) {
         current_frame = frame;
-        run_commands(frame);
+        run_commands(frame, false);
         if (director.quit_requested()) break;
         const DirectedFrame directed = director.frame(frame, input_hub.combined());
         Snapshot snap = directed.snapshot;
