@@ -121,7 +121,40 @@ uint16_t Director::body_id(const std::string& name) const {
     throw ControlError("no body named \"" + name + "\" in the scene (bodies: " + names + ")");
 }
 
+void Director::press_buttons(uint64_t frame, const NavSample& input) {
+    const uint32_t held = input.connected ? input.buttons : 0u;
+    const uint32_t pressed = held & ~last_buttons_;
+    last_buttons_ = held;
+    for (int b = 0; b < 32; ++b) {
+        if (!(pressed & (1u << b))) continue;
+        const auto it = cluster_.input.button_actions.find(b);
+        if (it == cluster_.input.button_actions.end() || it->second == "none") continue;
+        const std::string& action = it->second;
+        ControlCommand c;
+        if (action == "next_mode") {
+            c.verb = ControlVerb::Mode;
+            const NavMode now = live_ ? nav_.mode() : NavMode::SurfaceWalk;  // from a show: orbit first
+            c.nav_mode = now == NavMode::Orbit ? "fly" : now == NavMode::FreeFly ? "walk" : "orbit";
+        } else if (action == "toggle_pause") {
+            c.verb = paused_ ? ControlVerb::Resume : ControlVerb::Pause;
+        } else if (action == "play") {
+            c.verb = ControlVerb::Play;
+        } else if (action == "stop") {
+            c.verb = ControlVerb::Stop;
+        } else {  // orbit_nearest
+            c.verb = ControlVerb::Mode;
+            c.nav_mode = "orbit";
+        }
+        try {
+            spdlog::info("director: button {} ({}): {}", b, action, apply(c, frame));
+        } catch (const std::exception& e) {
+            spdlog::warn("director: button {} ({}): {}", b, action, e.what());
+        }
+    }
+}
+
 DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
+    press_buttons(frame, input);
     const double step_dt =
         last_frame_ && frame > *last_frame_ ? static_cast<double>(frame - *last_frame_) * dt_ : 0.0;
     const NavAxes axes = shaper_.shape(input, step_dt > 0.0 ? step_dt : dt_);

@@ -6,6 +6,7 @@
 //   Live mode   the presenter drives: the navigation model (3D mouse, gamepad, goto) moves the
 //               camera, the simulation clock runs at `time rate` (show seconds per frame x rate).
 //
+// Device buttons run actions on press (input.buttons: next navigation mode, pause, play...).
 // A manual command (goto, mode, time, stop) or a navigation device leaving its dead zone during
 // a show (input.takeover) switches to Live mode from the show's current camera and time; the
 // show's settings stay until changed. Clocks are rebased at each change so that, without any
@@ -62,7 +63,8 @@ private:
     double sim_time_at(uint64_t frame) const;
     void rebase(uint64_t frame);  // clocks keep their values at `frame`, new rules from there
     void take_over(uint64_t frame, const char* why);
-    double show_rate_at(double show_time_s) const;  // simulation seconds per show second there
+    double show_rate_at(double show_time_s) const;
+    void press_buttons(uint64_t frame, const NavSample& input);  // input.button_actions, on press  // simulation seconds per show second there
     uint16_t body_id(const std::string& name) const;  // throws ControlError
 
     const ClusterConfig& cluster_;
@@ -80,6 +82,7 @@ private:
     uint64_t base_frame_ = 0;
     std::optional<uint64_t> last_frame_;  // the last frame produced
     uint64_t last_reports_ = 0;           // the devices' report count at the last frame
+    uint32_t last_buttons_ = 0;           // buttons held at the last frame (actions fire on press)
     ShowSettings live_settings_;          // Live mode: the show's settings when it stopped
     // set commands, over the show's or live settings (none: not overridden)
     std::optional<ShadowMode> shadow_override_;

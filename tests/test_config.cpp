@@ -110,6 +110,29 @@ TEST(Config, MalformedValuesAreNamed) {
     expect_error("missing_file", m, "key_file", "does not exist");
 }
 
+TEST(Config, InputSectionIsReadAndItsErrorsNamed) {
+    json c = base_config();
+    c["input"] = {{"usb", false}, {"dead_zone", 0.2}, {"goto_seconds", 2}, {"buttons", {{"3", "play"}, {"0", "none"}}}};
+    const ClusterConfig cfg = load_cluster_config(write_config("input_ok", c));
+    EXPECT_FALSE(cfg.input.usb);
+    EXPECT_DOUBLE_EQ(cfg.input.dead_zone, 0.2);
+    EXPECT_DOUBLE_EQ(cfg.input.goto_seconds, 2.0);
+    EXPECT_EQ(cfg.input.button_actions.size(), 2u);
+    EXPECT_EQ(cfg.input.button_actions.at(3), "play");
+    json a = base_config();
+    a["input"] = {{"buttons", {{"0", "launch"}}}};
+    expect_error("input_bad_action", a, "input.buttons.0", "is not one of");
+    json b = base_config();
+    b["input"] = {{"buttons", {{"first", "play"}}}};
+    expect_error("input_bad_button", b, "input.buttons.first", "0..31");
+    json z = base_config();
+    z["input"] = {{"dead_zone", 1.5}};
+    expect_error("input_dead_zone", z, "input.dead_zone", "outside the allowed range");
+    json t = base_config();
+    t["input"] = {{"device_table", "input/none.json"}};
+    expect_error("input_table", t, "input.device_table", "does not exist");
+}
+
 TEST(Config, SyntaxErrorNamesFileAndPosition) {
     const std::string dir = test::scratch_dir("config/syntax");
     test::write_text(dir + "/broken.json", "{\n  \"cluster_id\": 3,\n  \"channels\": [ }\n");

@@ -331,3 +331,41 @@ TEST(ControlServer, InputThatEndsIsStillAnswered) {
     EXPECT_EQ(a.read_line(), "ok quit");
     EXPECT_EQ(a.read_line(), "(no reply)");  // then the server closed the connection
 }
+
+TEST_F(DirectorFixture, ButtonsCycleTheModeAndPauseOncePerPress) {
+    // Defaults: button 0 = next navigation mode, button 1 = pause / resume.
+    director->frame(0, no_device);
+    NavSample dev;
+    dev.connected = true;
+    dev.buttons = 1u;  // press button 0 and hold it for three frames
+    for (uint64_t f = 1; f <= 3; ++f) director->frame(f, dev);
+    EXPECT_TRUE(director->live());
+    EXPECT_EQ(director->status(4)["navigation"]["mode"], "orbit");  // once, not once per frame
+    dev.buttons = 0u;
+    director->frame(4, dev);
+    dev.buttons = 1u;
+    director->frame(5, dev);
+    EXPECT_EQ(director->status(6)["navigation"]["mode"], "free_fly");
+    dev.buttons = 0u;
+    director->frame(6, dev);
+    dev.buttons = 1u;
+    director->frame(7, dev);
+    EXPECT_EQ(director->status(8)["navigation"]["mode"], "surface_walk");
+    // Button 1: pause, then resume on the next press.
+    dev.buttons = 2u;
+    const double t8 = director->frame(8, dev).snapshot.sim_time_s;
+    EXPECT_EQ(director->frame(9, dev).snapshot.sim_time_s, t8);
+    EXPECT_EQ(director->frame(12, dev).snapshot.sim_time_s, t8);
+    dev.buttons = 0u;
+    director->frame(13, dev);
+    dev.buttons = 2u;
+    EXPECT_EQ(director->frame(14, dev).snapshot.sim_time_s, t8);  // runs again from here
+    EXPECT_GT(director->frame(15, dev).snapshot.sim_time_s, t8);
+    // Unplugging with a button held, and plugging in again without it, is not a press.
+    dev.connected = false;
+    director->frame(16, dev);
+    dev.connected = true;
+    dev.buttons = 0u;
+    director->frame(17, dev);
+    EXPECT_EQ(director->status(18)["paused"], false);
+}

@@ -114,6 +114,11 @@ ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Tr
 
 }  // namespace
 
+const std::vector<std::string>& button_action_names() {
+    static const std::vector<std::string> names = {"next_mode", "toggle_pause", "play", "stop", "orbit_nearest", "none"};
+    return names;
+}
+
 ClusterConfig load_cluster_config(const std::string& file_in) {
     std::error_code ec;
     fs::path abs = fs::absolute(file_in, ec);
@@ -185,6 +190,20 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
         ic.orbit_rate_deg_s = in->number_in("orbit_rate_deg_s", 0.1, 3600.0, ic.orbit_rate_deg_s);
         ic.goto_seconds = in->number_in("goto_seconds", 0.0, 600.0, ic.goto_seconds);
         ic.takeover = in->boolean("takeover", ic.takeover);
+        if (auto b = in->optional_child("buttons")) {
+            ic.button_actions.clear();
+            for (const auto& [key, value] : b->raw().items()) {
+                int index = -1;
+                try {
+                    size_t used = 0;
+                    index = std::stoi(key, &used);
+                    if (used != key.size() || index < 0 || index > 31) index = -1;
+                } catch (const std::exception&) {
+                }
+                if (index < 0) b->fail(key, "a button is named by its index, 0..31");
+                ic.button_actions[index] = b->one_of(key, button_action_names());
+            }
+        }
         in->reject_unknown_keys();
     }
 

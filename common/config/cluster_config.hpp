@@ -2,6 +2,7 @@
 // The cluster configuration: network, dome, output and the channels (one slave process each).
 // Loaded from JSON by load_cluster_config(); every mistake throws ConfigError naming file and field.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,13 @@ struct InputConfig {
     double orbit_rate_deg_s = 30.0;   // orbiting a body
     double goto_seconds = 4.0;        // duration of a "goto" flight
     bool takeover = true;             // touching a device during a show stops it and hands over the camera
+    // What a device button does when pressed (button index -> action, see button_action_names()).
+    std::map<int, std::string> button_actions = {{0, "next_mode"}, {1, "toggle_pause"}};
 };
+
+// "next_mode" (orbit -> free fly -> surface walk -> orbit), "toggle_pause", "play" (resume the
+// show), "stop" (leave the show), "orbit_nearest" (orbit the nearest body), "none".
+const std::vector<std::string>& button_action_names();
 
 struct ChannelConfig {
     int id = 0;
