@@ -113,6 +113,12 @@ void Director::take_over(uint64_t frame, const char* why) {
                  t_show, frame, rate_);
 }
 
+std::vector<BodyState> Director::states_at(double sim_time_s) const {
+    std::vector<BodyState> out;
+    for (const auto& b : scene_.bodies) out.push_back(body_state(b, sim_time_s));
+    return out;
+}
+
 uint16_t Director::body_id(const std::string& name) const {
     for (const auto& b : scene_.bodies)
         if (lower(b.name) == lower(name)) return b.id;
@@ -175,7 +181,7 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     } else {
         Snapshot& s = out.snapshot;
         s.sim_time_s = live_sim_time_at(frame);
-        for (const auto& body : scene_.bodies) s.bodies.push_back(body_state(body, s.sim_time_s));
+        s.bodies = states_at(s.sim_time_s);
         const CameraPose pose = nav_.step(moved ? axes : NavAxes{}, step_dt, nav_bodies(scene_, s.bodies));
         s.camera_position_m = pose.position_m;
         s.camera_orientation = pose.orientation;
@@ -200,11 +206,8 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
         case ControlVerb::Goto: {
             const uint16_t id = body_id(cmd.body);
             take_over(next, "goto");
-            const double t = live_sim_time_at(next);
-            std::vector<BodyState> states;
-            for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
             const double secs = cmd.seconds.value_or(cluster_.input.goto_seconds);
-            nav_.fly_to(id, secs, nav_bodies(scene_, states));
+            nav_.fly_to(id, secs, nav_bodies(scene_, states_at(live_sim_time_at(next))));
             std::snprintf(buf, sizeof buf, "goto %s: flying for %.3g s from frame %llu", scene_.bodies[id].name.c_str(),
                           secs, static_cast<unsigned long long>(next));
             return buf;
@@ -216,10 +219,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             std::optional<uint16_t> target;
             if (!cmd.body.empty()) target = body_id(cmd.body);
             take_over(next, "mode");
-            const double t = live_sim_time_at(next);
-            std::vector<BodyState> states;
-            for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
-            nav_.set_mode(m, nav_bodies(scene_, states), target);
+            nav_.set_mode(m, nav_bodies(scene_, states_at(live_sim_time_at(next))), target);
             return "mode " + std::string(nav_mode_name(nav_.mode())) + " around " + scene_.bodies[nav_.anchor()].name +
                    " from frame " + std::to_string(next);
         }
@@ -303,9 +303,7 @@ nlohmann::json Director::status(uint64_t next) const {
                      {"utc", utc_or_note(t)},
                      {"rate", paused_ ? 0.0 : live_ ? rate_ : show_rate_at(show_time_at(next))}};
     if (live_) {
-        std::vector<BodyState> states;
-        for (const auto& b : scene_.bodies) states.push_back(body_state(b, t));
-        const auto bodies = nav_bodies(scene_, states);
+        const auto bodies = nav_bodies(scene_, states_at(t));
         j["navigation"] = {{"mode", nav_mode_name(nav_.mode())},
                            {"anchor", scene_.bodies[nav_.anchor()].name},
                            {"altitude_m", nav_.altitude_m(bodies)},

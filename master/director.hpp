@@ -66,6 +66,7 @@ private:
     double show_rate_at(double show_time_s) const;
     void press_buttons(uint64_t frame, const NavSample& input);  // input.button_actions, on press  // simulation seconds per show second there
     uint16_t body_id(const std::string& name) const;  // throws ControlError
+    std::vector<BodyState> states_at(double sim_time_s) const;  // every body, from the ephemeris
 
     const ClusterConfig& cluster_;
     const SceneConfig& scene_;
