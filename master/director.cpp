@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include "config/config_error.hpp"
@@ -15,10 +14,6 @@
 namespace cupola {
 
 namespace {
-
-double frame_interval(const ClusterConfig& cluster, const ShowScript& show) {
-    return cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
-}
 
 NavigationTuning navigation_tuning(const InputConfig& in) {
     NavigationTuning t;
@@ -50,18 +45,18 @@ std::string utc_or_note(double t) {
     }
 }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
 
 }  // namespace
+
+double show_frame_interval_s(const ClusterConfig& cluster, const ShowScript& show) {
+    return cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
+}
 
 Director::Director(const ClusterConfig& cluster, const SceneConfig& scene, ShowScript show)
     : cluster_(cluster),
       scene_(scene),
       show_(std::move(show)),
-      dt_(frame_interval(cluster, show_)),
+      dt_(show_frame_interval_s(cluster, show_)),
       shaper_(shaper_tuning(cluster.input)),
       nav_(navigation_tuning(cluster.input)) {}
 
@@ -121,7 +116,7 @@ std::vector<BodyState> Director::states_at(double sim_time_s) const {
 
 uint16_t Director::body_id(const std::string& name) const {
     for (const auto& b : scene_.bodies)
-        if (lower(b.name) == lower(name)) return b.id;
+        if (lower_case(b.name) == lower_case(name)) return b.id;
     std::string names;
     for (const auto& b : scene_.bodies) names += (names.empty() ? "" : ", ") + b.name;
     throw ControlError("no body named \"" + name + "\" in the scene (bodies: " + names + ")");
@@ -166,11 +161,7 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     const NavAxes axes = shaper_.shape(input, step_dt > 0.0 ? step_dt : dt_);
     const bool moved = any_motion(axes);
     // Only a device held outside its dead zone now takes over (not a smoothing tail).
-    const NavAxes& r = input.axes;
-    const double dz = cluster_.input.dead_zone;
-    const bool held = input.connected && (std::abs(r.right) > dz || std::abs(r.up) > dz || std::abs(r.forward) > dz ||
-                                          std::abs(r.pitch_up) > dz || std::abs(r.yaw_left) > dz ||
-                                          std::abs(r.roll_ccw) > dz);
+    const bool held = shaper_.outside_dead_zone(input);
     if (!live_ && held && moved && cluster_.input.takeover) take_over(frame, "the navigation device");
 
     DirectedFrame out;
@@ -248,7 +239,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             } else if (live_) {
                 // show_base_ still holds the show time where the show was left.
             }
-            dt_ = frame_interval(cluster_, show_);
+            dt_ = show_frame_interval_s(cluster_, show_);
             live_ = false;
             paused_ = false;
             base_frame_ = next;

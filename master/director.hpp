@@ -31,6 +31,9 @@
 
 namespace cupola {
 
+// Show seconds per frame: 1 / frame_rate_hz, or the show's frame_interval_s when that is 0.
+double show_frame_interval_s(const ClusterConfig& cluster, const ShowScript& show);
+
 // One frame as the director defines it: the snapshot's simulation part (time, camera, bodies,
 // shadow mode in settings.flags) and the settings the master applies when it finishes it.
 struct DirectedFrame {

@@ -40,7 +40,7 @@ MasterNode::MasterNode(ClusterConfig cluster, MasterOptions options)
 
 Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& scene, const ShowScript& show,
                              uint64_t frame, const AutoExposure* auto_exposure, const GlareSources* glare) {
-    const double dt = cluster.frame_rate_hz > 0 ? 1.0 / cluster.frame_rate_hz : show.frame_interval_s();
+    const double dt = show_frame_interval_s(cluster, show);
     const double show_time_s = static_cast<double>(frame) * dt;
     Snapshot snap = show.evaluate(show_time_s, scene);
     finish_frame_snapshot(snap, show.settings_at(show_time_s), cluster, scene, frame, dt, auto_exposure, glare);

@@ -13,10 +13,6 @@ namespace cupola {
 
 namespace {
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
 
 double parse_number(const std::string& word, const std::string& what) {
     try {
@@ -35,6 +31,11 @@ void expect_count(const std::vector<std::string>& w, size_t lo, size_t hi, const
 
 }  // namespace
 
+std::string lower_case(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
 const std::string& control_help() {
     static const std::string text =
         "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
@@ -52,7 +53,7 @@ ControlCommand parse_control_line(const std::string& line) {
     for (std::string word; in >> word;) w.push_back(word);
     if (w.empty()) throw ControlError("empty line; " + control_help());
     ControlCommand c;
-    const std::string verb = lower(w[0]);
+    const std::string verb = lower_case(w[0]);
     if (verb == "goto") {
         expect_count(w, 2, 3, "goto <body> [seconds]");
         c.verb = ControlVerb::Goto;
@@ -64,13 +65,13 @@ ControlCommand parse_control_line(const std::string& line) {
     } else if (verb == "mode") {
         expect_count(w, 2, 3, "mode orbit|fly|walk [body]");
         c.verb = ControlVerb::Mode;
-        c.nav_mode = lower(w[1]);
+        c.nav_mode = lower_case(w[1]);
         if (c.nav_mode != "orbit" && c.nav_mode != "fly" && c.nav_mode != "walk")
             throw ControlError("mode: \"" + w[1] + "\" is not one of orbit, fly, walk");
         if (w.size() == 3) c.body = w[2];
     } else if (verb == "time") {
         if (w.size() < 2) throw ControlError("usage: time rate <x> | time set <UTC>");
-        const std::string what = lower(w[1]);
+        const std::string what = lower_case(w[1]);
         if (what == "rate") {
             expect_count(w, 3, 3, "time rate <x>");
             c.verb = ControlVerb::TimeRate;
@@ -104,8 +105,8 @@ ControlCommand parse_control_line(const std::string& line) {
     } else if (verb == "set") {
         expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit <value>");
         c.verb = ControlVerb::Set;
-        c.setting = lower(w[1]);
-        c.value = lower(w[2]);
+        c.setting = lower_case(w[1]);
+        c.value = lower_case(w[2]);
         if (c.setting == "shadow_mode") {
             if (c.value != "show") {
                 const auto& n = shadow_mode_names();

@@ -46,6 +46,9 @@ struct ControlCommand {
 // Parses one line (without its newline). Throws ControlError on anything else.
 ControlCommand parse_control_line(const std::string& line);
 
+// Lower case (ASCII), how words and body names are compared.
+std::string lower_case(std::string s);
+
 // The help text (one line per command, for "help").
 const std::string& control_help();
 

@@ -33,6 +33,14 @@ InputShaper::InputShaper(ShaperTuning tuning) : tuning_(tuning) {
 
 void InputShaper::reset() { state_ = NavAxes{}; }
 
+bool InputShaper::outside_dead_zone(const NavSample& s) const {
+    if (!s.connected) return false;
+    const NavAxes& a = s.axes;
+    for (double x : {a.right, a.up, a.forward, a.pitch_up, a.yaw_left, a.roll_ccw})
+        if (curve(x, tuning_) != 0.0) return true;
+    return false;
+}
+
 NavAxes InputShaper::shape(const NavSample& s, double dt_s) {
     if (!s.connected) {
         reset();

@@ -26,6 +26,9 @@ public:
     // clamped to -1..1 first; a non-finite axis reads as 0. dt_s <= 0 (or non-finite) keeps the
     // smoothed state where it is.
     NavAxes shape(const NavSample& s, double dt_s);
+    // Whether the device is held outside its dead zone now (one axis is enough), whatever the
+    // smoothing still carries.
+    bool outside_dead_zone(const NavSample& s) const;
 
     // Forget the smoothing state (the next output starts from rest).
     void reset();
