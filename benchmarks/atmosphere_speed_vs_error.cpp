@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
         row.level = level;
         at::TableCacheOptions no_cache;
         no_cache.enabled = false;
-        const at::ProductionAtmosphere model(at::AtmosphereParameters::earth(), at::production_quality(level), no_cache);
+        const at::ProductionAtmosphere model(at::AtmosphereParameters::earth(), at::production_quality(level),
+                                             no_cache);
         row.build_s = model.tables().build_seconds;
         row.table_kib = model.tables().bytes() / 1024.0;
         row.accuracy = at::measure_accuracy(model, ref);
@@ -136,7 +137,9 @@ int main(int argc, char** argv) {
                 a.pareto = false;
     }
     std::printf("\nframe without atmosphere: %.1f ms at %dx%d\n\n", base_ms, size, size);
-    std::printf("| model | ms/frame | atmosphere pass ms | table build s | tables KiB | median err | p99 err | median du'v' | Pareto |\n");
+    std::printf(
+        "| model | ms/frame | atmosphere pass ms | table build s | tables KiB | median err | p99 err | median du'v' | "
+        "Pareto |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows)
         std::printf("| %s%s | %.1f | %.1f | %.3f | %.0f | %.2f %% | %.1f %% | %.4f | %s |\n", r.level.c_str(),

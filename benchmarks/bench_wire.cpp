@@ -20,7 +20,8 @@ Snapshot snapshot_with(int bodies) {
     s.frame = 1;
     s.sim_time_s = 7.6e8;
     s.camera_position_m = {1.5e11, -2.0e7, 3.0e6};
-    for (int i = 0; i < bodies; ++i) s.bodies.push_back({static_cast<uint16_t>(i), {1e11 + i, 2e9, -3e8}, {1, 0, 0, 0}});
+    for (int i = 0; i < bodies; ++i)
+        s.bodies.push_back({static_cast<uint16_t>(i), {1e11 + i, 2e9, -3e8}, {1, 0, 0, 0}});
     return s;
 }
 

@@ -37,7 +37,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cluster_network: needs network namespaces: %s\n", why.c_str());
         return 2;
     }
-    std::printf("| loss | frames/s | frame ms (median) | barrier overhead ms (median / p99) | snapshot latency ms (median / p99) | resends/frame |\n");
+    std::printf(
+        "| loss | frames/s | frame ms (median) | barrier overhead ms (median / p99) | snapshot latency ms (median / "
+        "p99) | resends/frame |\n");
     std::printf("|---|---|---|---|---|---|\n");
     for (double loss : losses) {
         test::NetnsClusterOptions o;

@@ -140,7 +140,8 @@ int main(int argc, char** argv) {
     std::printf("renderer: %s\n", gl.info().renderer.c_str());
 
     // The default table (its build time is in the LUT-size table below).
-    const sh::Texture2DData lut = eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
+    const sh::Texture2DData lut =
+        eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
     const glm::vec2 lut_size(lut.width, lut.height);
     const GlTexture lut_tex(lut.width, lut.height, lut.texels.data(), GL_LINEAR);
     GlEmptyVertexArray vao;
@@ -190,7 +191,8 @@ int main(int argc, char** argv) {
     for (int i = 0; i <= 200; ++i) {
         const double a = 0.9 + 0.2 * i / 200;
         for (int k = 0; k < 401; ++k)
-            samples.push_back({static_cast<float>(a), static_cast<float>(std::fabs(1.0 - a) + 2.0 * std::min(1.0, a) * k / 401), 0.0, 0});
+            samples.push_back({static_cast<float>(a),
+                               static_cast<float>(std::fabs(1.0 - a) + 2.0 * std::min(1.0, a) * k / 401), 0.0, 0});
     }
     for (int k = 0; k < 4001; ++k) samples.push_back({3.7f, static_cast<float>(2.7 + 2.0 * k / 4001), 0.0, 1});
     const auto t_ref = std::chrono::steady_clock::now();
@@ -208,7 +210,7 @@ int main(int argc, char** argv) {
     set_uniforms(all->id(), lut_size, u, n_order);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     const Image img = efb.read();  // row 0 = top = texture row eh - 1
-    Stats err[3][2];  // exact, fast, lut x Sun-Moon, Earth-Moon
+    Stats err[3][2];               // exact, fast, lut x Sun-Moon, Earth-Moon
     for (size_t i = 0; i < samples.size(); ++i) {
         const int x = static_cast<int>(i % ew), y = static_cast<int>(i / ew);
         const float* g = img.pixel(x, eh - 1 - y);
@@ -235,9 +237,13 @@ int main(int argc, char** argv) {
     }
 
     // --- report ---------------------------------------------------------------------------------
-    std::printf("\n%dx%d frame, median of %d; baseline (\"none\": fetch and write) %.2f ms; reference for %zu samples: %.1f s\n\n",
-                size, size, reps, base_ms, samples.size(), ref_s);
-    std::printf("| mode | ms/frame (p25-p75) | pass ms (minus none) | ns/pixel | Sun-Moon max err | Sun-Moon mean err | a=3.7 max err | a=3.7 mean err |\n");
+    std::printf(
+        "\n%dx%d frame, median of %d; baseline (\"none\": fetch and write) %.2f ms; reference for %zu samples: %.1f "
+        "s\n\n",
+        size, size, reps, base_ms, samples.size(), ref_s);
+    std::printf(
+        "| mode | ms/frame (p25-p75) | pass ms (minus none) | ns/pixel | Sun-Moon max err | Sun-Moon mean err | a=3.7 "
+        "max err | a=3.7 mean err |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
     auto fmt = [](double v) {
         char b[32];
@@ -245,14 +251,19 @@ int main(int argc, char** argv) {
         return std::string(b);
     };
     for (const auto& m : modes) {
-        const int k = m.id == sh::ECLIPSE_MODE_EXACT ? 0 : m.id == sh::ECLIPSE_MODE_FAST ? 1 : m.id == sh::ECLIPSE_MODE_LUT ? 2 : -1;
+        const int k = m.id == sh::ECLIPSE_MODE_EXACT  ? 0
+                      : m.id == sh::ECLIPSE_MODE_FAST ? 1
+                      : m.id == sh::ECLIPSE_MODE_LUT  ? 2
+                                                      : -1;
         const double pass = m.ms - base_ms;
         std::printf("| %s | %.2f (%.2f-%.2f) | %.2f | %.2f | %s | %s | %s | %s |\n", m.name, m.ms, m.p25, m.p75, pass,
-                    pass * 1e6 / pixels,
-                    k < 0 ? "n/a" : fmt(err[k][0].max).c_str(), k < 0 ? "n/a" : fmt(err[k][0].mean()).c_str(),
-                    k < 0 ? "n/a" : fmt(err[k][1].max).c_str(), k < 0 ? "n/a" : fmt(err[k][1].mean()).c_str());
+                    pass * 1e6 / pixels, k < 0 ? "n/a" : fmt(err[k][0].max).c_str(),
+                    k < 0 ? "n/a" : fmt(err[k][0].mean()).c_str(), k < 0 ? "n/a" : fmt(err[k][1].max).c_str(),
+                    k < 0 ? "n/a" : fmt(err[k][1].mean()).c_str());
     }
-    std::printf("\n| LUT size | KiB (RGBA32F) | build ms | Sun-Moon max err | Sun-Moon mean err | a=3.7 max err | a=3.7 mean err |\n");
+    std::printf(
+        "\n| LUT size | KiB (RGBA32F) | build ms | Sun-Moon max err | Sun-Moon mean err | a=3.7 max err | a=3.7 mean "
+        "err |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const auto& r : lut_rows)
         std::printf("| %dx%d%s | %.0f | %.1f | %s | %s | %s | %s |\n", r.w, r.h,
@@ -261,20 +272,25 @@ int main(int argc, char** argv) {
                     fmt(r.e[1].mean()).c_str());
     if (!csv.empty()) {
         std::ofstream out(csv);
-        out << "kind,name,ms_frame,ms_p25,ms_p75,ms_pass,ns_per_pixel,build_ms,kib,sun_moon_max,sun_moon_mean,earth_moon_max,earth_moon_mean\n";
+        out << "kind,name,ms_frame,ms_p25,ms_p75,ms_pass,ns_per_pixel,build_ms,kib,sun_moon_max,sun_moon_mean,earth_"
+               "moon_max,earth_moon_mean\n";
         for (const auto& m : modes) {
-            const int k = m.id == sh::ECLIPSE_MODE_EXACT ? 0 : m.id == sh::ECLIPSE_MODE_FAST ? 1 : m.id == sh::ECLIPSE_MODE_LUT ? 2 : -1;
+            const int k = m.id == sh::ECLIPSE_MODE_EXACT  ? 0
+                          : m.id == sh::ECLIPSE_MODE_FAST ? 1
+                          : m.id == sh::ECLIPSE_MODE_LUT  ? 2
+                                                          : -1;
             const double pass = m.ms - base_ms;
             out << "mode," << m.name << "," << m.ms << "," << m.p25 << "," << m.p75 << "," << pass << ","
                 << pass * 1e6 / pixels << ",,,";
             if (k < 0)
                 out << ",,,\n";
             else
-                out << err[k][0].max << "," << err[k][0].mean() << "," << err[k][1].max << "," << err[k][1].mean() << "\n";
+                out << err[k][0].max << "," << err[k][0].mean() << "," << err[k][1].max << "," << err[k][1].mean()
+                    << "\n";
         }
         for (const auto& r : lut_rows)
-            out << "lut_size," << r.w << "x" << r.h << ",,,,,," << r.build_ms << "," << r.kib << "," << r.e[0].max << ","
-                << r.e[0].mean() << "," << r.e[1].max << "," << r.e[1].mean() << "\n";
+            out << "lut_size," << r.w << "x" << r.h << ",,,,,," << r.build_ms << "," << r.kib << "," << r.e[0].max
+                << "," << r.e[0].mean() << "," << r.e[1].max << "," << r.e[1].mean() << "\n";
     }
     return 0;
 }

@@ -69,8 +69,9 @@ int main(int argc, char** argv) {
     snap.settings.exposure = 0.5f;
     scene.glare.enabled = true;
     snap.glare = GlareSources(scene, nullptr).select(snap);
-    const GlareVisibility analytic = analytic_visibility(snap.camera_position_m, position_of(snap, sun),
-                                                         scene.bodies[sun].radius_m, snapshot_occluders(snap, scene, sun));
+    const GlareVisibility analytic =
+        analytic_visibility(snap.camera_position_m, position_of(snap, sun), scene.bodies[sun].radius_m,
+                            snapshot_occluders(snap, scene, sun));
 
     ClusterConfig cluster;
     ChannelConfig ch;
@@ -80,8 +81,8 @@ int main(int argc, char** argv) {
     cluster.channels = {ch};
 
     EglContext gl(-1);
-    std::printf("renderer: %s; channel %dx%d (90 degrees), %d frames per case\n", gl.info().renderer.c_str(), size, size,
-                frames);
+    std::printf("renderer: %s; channel %dx%d (90 degrees), %d frames per case\n", gl.info().renderer.c_str(), size,
+                size, frames);
     std::printf("analytic visible fraction %.5f\n\n", analytic.visible_fraction);
     // Every case is built first, then timed in interleaved rounds (the median of 5 is kept), so
     // that drifts of the machine hit every case alike.
@@ -94,7 +95,8 @@ int main(int argc, char** argv) {
         if (probe > 0) s.glare.probe_size = probe;
         scenes.push_back(s);
     }
-    for (size_t i = 0; i < probes.size(); ++i) renderers.push_back(std::make_unique<SceneRenderer>(cluster, ch, scenes[i]));
+    for (size_t i = 0; i < probes.size(); ++i)
+        renderers.push_back(std::make_unique<SceneRenderer>(cluster, ch, scenes[i]));
     std::vector<std::vector<double>> ms(probes.size());
     for (int round = 0; round < 5; ++round)
         for (size_t i = 0; i < probes.size(); ++i) ms[i].push_back(time_frames(*renderers[i], snap, frames));

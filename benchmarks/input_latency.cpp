@@ -6,10 +6,10 @@
 // wire; and one channel played at the wire level by this program (hello/welcome handshake, an
 // instant FrameDone per snapshot), so the figure is the master's own path, not a renderer's.
 //
-// Per sample: the cap rests; then, at a random phase of the frame clock, at t0 the device sends "push right" (report 1, x = +175 of
-// 350); t1 is when the first snapshot whose camera moved arrives at the channel's socket.
-// Printed: t1 - t0 (device report to snapshot received, loopback UDP included) and the master's
-// own figure from its events (report callback to snapshot sent), at each frame rate asked for.
+// Per sample: the cap rests; then, at a random phase of the frame clock, at t0 the device sends "push right" (report 1,
+// x = +175 of 350); t1 is when the first snapshot whose camera moved arrives at the channel's socket. Printed: t1 - t0
+// (device report to snapshot received, loopback UDP included) and the master's own figure from its events (report
+// callback to snapshot sent), at each frame rate asked for.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -62,7 +62,8 @@ std::string write_config(const std::string& dir, double rate_hz) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Latency from a USB navigation report to the snapshot leaving the master (run under umockdev-wrapper)"};
+    CLI::App app{
+        "Latency from a USB navigation report to the snapshot leaving the master (run under umockdev-wrapper)"};
     std::vector<double> rates = {60.0, 0.0};
     int samples = 200;
     app.add_option("--rates", rates, "master frame rates to measure (0: as fast as the barrier allows)");
@@ -78,7 +79,9 @@ int main(int argc, char** argv) {
 
     test::UsbTestbed bed;
     auto& mouse = bed.add_device(test::space_navigator());
-    std::printf("| master frame rate | samples | report → snapshot at the channel: median / p90 / p99 / max (ms) | master's own report → sent: median / p99 (ms) |\n|---|---|---|---|\n");
+    std::printf(
+        "| master frame rate | samples | report → snapshot at the channel: median / p90 / p99 / max (ms) | master's "
+        "own report → sent: median / p99 (ms) |\n|---|---|---|---|\n");
     for (double rate : rates) {
         const ClusterConfig cfg = load_cluster_config(write_config(dir, rate));
         const AuthKey key = load_key_file(cfg.key_file, false);

@@ -47,9 +47,9 @@ namespace {
     std::fflush(stderr);
     std::abort();
 }
-#define FUZZ_CHECK(cond)                     \
-    do {                                     \
-        if (!(cond)) violated(#cond);        \
+#define FUZZ_CHECK(cond)              \
+    do {                              \
+        if (!(cond)) violated(#cond); \
     } while (0)
 
 const PacketCodec& codec() {
@@ -183,11 +183,20 @@ void run_sessions(Reader& r) {
 // What the master/slave would do with a reassembled message: decode its body.
 void consume(const Message& m) {
     switch (m.type) {
-        case PacketType::Snapshot: check_snapshot(m.payload.data(), m.payload.size()); break;
-        case PacketType::Hello: check_hello(m.payload); break;
-        case PacketType::FrameDone: check_frame_report(m.payload); break;
-        case PacketType::Welcome: check_welcome(m.payload); break;
-        default: break;
+        case PacketType::Snapshot:
+            check_snapshot(m.payload.data(), m.payload.size());
+            break;
+        case PacketType::Hello:
+            check_hello(m.payload);
+            break;
+        case PacketType::FrameDone:
+            check_frame_report(m.payload);
+            break;
+        case PacketType::Welcome:
+            check_welcome(m.payload);
+            break;
+        default:
+            break;
     }
 }
 
@@ -293,7 +302,9 @@ void run_reassembly(Reader& r) {
                         case Edit::Xor:
                             if (body) d[pos % body] ^= value;
                             break;
-                        case Edit::Insert: d.insert(d.begin() + static_cast<std::ptrdiff_t>(pos % (body + 1)), value); break;
+                        case Edit::Insert:
+                            d.insert(d.begin() + static_cast<std::ptrdiff_t>(pos % (body + 1)), value);
+                            break;
                         case Edit::Erase:
                             if (body) d.erase(d.begin() + static_cast<std::ptrdiff_t>(pos % body));
                             break;
@@ -313,10 +324,18 @@ void run_payload(Reader& r) {
     const auto kind = static_cast<PayloadKind>(r.u8() % kPayloadKindCount);
     const std::vector<uint8_t> payload = r.rest();
     switch (kind) {
-        case PayloadKind::Snapshot: check_snapshot(payload.data(), payload.size()); break;
-        case PayloadKind::Hello: check_hello(payload); break;
-        case PayloadKind::FrameReport: check_frame_report(payload); break;
-        case PayloadKind::Welcome: check_welcome(payload); break;
+        case PayloadKind::Snapshot:
+            check_snapshot(payload.data(), payload.size());
+            break;
+        case PayloadKind::Hello:
+            check_hello(payload);
+            break;
+        case PayloadKind::FrameReport:
+            check_frame_report(payload);
+            break;
+        case PayloadKind::Welcome:
+            check_welcome(payload);
+            break;
     }
 }
 
@@ -326,11 +345,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size == 0) return 0;
     Reader r(data, size);
     switch (static_cast<Mode>(r.u8() % kModeCount)) {
-        case Mode::Raw: run_raw(r, false); break;
-        case Mode::RawSigned: run_raw(r, true); break;
-        case Mode::Reassembly: run_reassembly(r); break;
-        case Mode::Sessions: run_sessions(r); break;
-        case Mode::Payload: run_payload(r); break;
+        case Mode::Raw:
+            run_raw(r, false);
+            break;
+        case Mode::RawSigned:
+            run_raw(r, true);
+            break;
+        case Mode::Reassembly:
+            run_reassembly(r);
+            break;
+        case Mode::Sessions:
+            run_sessions(r);
+            break;
+        case Mode::Payload:
+            run_payload(r);
+            break;
     }
     return 0;
 }

@@ -91,7 +91,9 @@ std::vector<std::vector<uint8_t>> encode(PacketType type, uint16_t sender, uint6
 }
 
 // max_datagram_sel for a wanted max_datagram (see Op::Encode).
-uint16_t datagram_sel(size_t max_datagram) { return static_cast<uint16_t>(max_datagram - (kHeaderSize + kTagSize + 16)); }
+uint16_t datagram_sel(size_t max_datagram) {
+    return static_cast<uint16_t>(max_datagram - (kHeaderSize + kTagSize + 16));
+}
 
 void op_encode(Writer& w, PacketType type, uint16_t sender, uint16_t frame, size_t max_datagram, uint8_t flags,
                const std::vector<uint8_t>& literal, uint16_t pad = 0) {
@@ -287,12 +289,12 @@ int main(int argc, char** argv) {
             w.u32(seq);
             w.u16(dt);
         };
-        step(0, 1, 1, 0, 0, 1);     // snapshot of an unknown master: unverified
-        step(1, 1, 1, 1, 1, 1);     // its welcome to us: opens
-        step(0, 1, 1, 0, 2, 1);     // accepted
-        step(0, 1, 1, 0, 2, 1);     // duplicate
-        step(1, 1, 2, 1, 0, 1);     // a restarted master welcomes us
-        step(0, 1, 1, 0, 3, 900);   // the old session: stale
+        step(0, 1, 1, 0, 0, 1);    // snapshot of an unknown master: unverified
+        step(1, 1, 1, 1, 1, 1);    // its welcome to us: opens
+        step(0, 1, 1, 0, 2, 1);    // accepted
+        step(0, 1, 1, 0, 2, 1);    // duplicate
+        step(1, 1, 2, 1, 0, 1);    // a restarted master welcomes us
+        step(0, 1, 1, 0, 3, 900);  // the old session: stale
         save("sessions-restart", w);
     }
     std::printf("cupola-fuzz-wire-corpus: %d seeds written to %s\n", written, dir.c_str());

@@ -51,7 +51,8 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         const double d = glm::length(to_centre);
         const glm::dvec3 c_hat = to_centre / d;
         const glm::dvec3 sun_dir = glm::normalize(sun_state->position_m - snap.camera_position_m);
-        const double scale = atmosphere::solar_scale(body->model, sun, glm::length(sun_state->position_m - st->position_m));
+        const double scale =
+            atmosphere::solar_scale(body->model, sun, glm::length(sun_state->position_m - st->position_m));
         // Eclipse shadows on this body, relative to its centre in world axes (what the slaves do
         // in channel axes), so that the exposure opens up in totality.
         const shading::EclipseCasters casters = casting_->casters_for(snap, st->id, glm::dmat3(1.0));

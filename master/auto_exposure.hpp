@@ -3,8 +3,8 @@
 // channel shares (the snapshot and the scene), so all channels tone-map identically and no seam
 // can come from exposure: the mean luminance (scene units) seen over the dome hemisphere, from the
 // production atmosphere of every body that has one (sky, lit ground, limb), under the frame's
-// eclipse shadows, evaluated on the CPU by the same shared code the slaves run. A pure function of the frame: no temporal adaptation, so
-// snapshots stay reproducible from the show alone.
+// eclipse shadows, evaluated on the CPU by the same shared code the slaves run. A pure function of the frame: no
+// temporal adaptation, so snapshots stay reproducible from the show alone.
 #include <memory>
 #include <vector>
 

@@ -45,7 +45,6 @@ std::string utc_or_note(double t) {
     }
 }
 
-
 }  // namespace
 
 double show_frame_interval_s(const ClusterConfig& cluster, const ShowScript& show) {
@@ -104,8 +103,8 @@ void Director::take_over(uint64_t frame, const char* why) {
         nav_.set_mode(NavMode::SurfaceWalk, bodies, *keys[i].camera.anchor);
     shaper_.reset();
     live_ = true;
-    spdlog::info("director: {} takes over from the show at show time {:.3f} s (frame {}); clock rate {:g}", why,
-                 t_show, frame, rate_);
+    spdlog::info("director: {} takes over from the show at show time {:.3f} s (frame {}); clock rate {:g}", why, t_show,
+                 frame, rate_);
 }
 
 std::vector<BodyState> Director::states_at(double sim_time_s) const {
@@ -156,8 +155,7 @@ void Director::press_buttons(uint64_t frame, const NavSample& input) {
 
 DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     press_buttons(frame, input);
-    const double step_dt =
-        last_frame_ && frame > *last_frame_ ? static_cast<double>(frame - *last_frame_) * dt_ : 0.0;
+    const double step_dt = last_frame_ && frame > *last_frame_ ? static_cast<double>(frame - *last_frame_) * dt_ : 0.0;
     const NavAxes axes = shaper_.shape(input, step_dt > 0.0 ? step_dt : dt_);
     const bool moved = any_motion(axes);
     // Only a device held outside its dead zone now takes over (not a smoothing tail).
@@ -204,7 +202,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             return buf;
         }
         case ControlVerb::Mode: {
-            const NavMode m = cmd.nav_mode == "orbit" ? NavMode::Orbit
+            const NavMode m = cmd.nav_mode == "orbit"  ? NavMode::Orbit
                               : cmd.nav_mode == "walk" ? NavMode::SurfaceWalk
                                                        : NavMode::FreeFly;
             std::optional<uint16_t> target;
@@ -218,7 +216,8 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             take_over(next, "time rate");
             rebase(next);
             rate_ = cmd.rate;
-            std::snprintf(buf, sizeof buf, "time rate %g from frame %llu", rate_, static_cast<unsigned long long>(next));
+            std::snprintf(buf, sizeof buf, "time rate %g from frame %llu", rate_,
+                          static_cast<unsigned long long>(next));
             return buf;
         case ControlVerb::TimeSet:
             take_over(next, "time set");
@@ -261,15 +260,22 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             return "manual control from frame " + std::to_string(next);
         case ControlVerb::Set:
             if (cmd.setting == "shadow_mode") {
-                if (cmd.value == "show") shadow_override_.reset();
-                else shadow_override_ = shadow_mode_from_name(cmd.value);
+                if (cmd.value == "show")
+                    shadow_override_.reset();
+                else
+                    shadow_override_ = shadow_mode_from_name(cmd.value);
             } else if (cmd.setting == "exposure") {
-                if (cmd.value == "show") exposure_override_.reset();
-                else if (cmd.value == "auto") exposure_override_ = std::optional<float>{};
-                else exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
+                if (cmd.value == "show")
+                    exposure_override_.reset();
+                else if (cmd.value == "auto")
+                    exposure_override_ = std::optional<float>{};
+                else
+                    exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
             } else {
-                if (cmd.value == "show") star_limit_override_.reset();
-                else star_limit_override_ = static_cast<float>(cmd.number.value());
+                if (cmd.value == "show")
+                    star_limit_override_.reset();
+                else
+                    star_limit_override_ = static_cast<float>(cmd.number.value());
             }
             return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
         case ControlVerb::Status:
@@ -292,7 +298,9 @@ nlohmann::json Director::status(uint64_t next) const {
                      {"show_time_s", show_time_at(next)},
                      {"sim_time_s", t},
                      {"utc", utc_or_note(t)},
-                     {"rate", paused_ ? 0.0 : live_ ? rate_ : show_rate_at(show_time_at(next))}};
+                     {"rate", paused_ ? 0.0
+                              : live_ ? rate_
+                                      : show_rate_at(show_time_at(next))}};
     if (live_) {
         const auto bodies = nav_bodies(scene_, states_at(t));
         j["navigation"] = {{"mode", nav_mode_name(nav_.mode())},

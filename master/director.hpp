@@ -39,7 +39,7 @@ double show_frame_interval_s(const ClusterConfig& cluster, const ShowScript& sho
 struct DirectedFrame {
     Snapshot snapshot;
     ShowSettings settings;
-    bool input_used = false;   // the navigation device moved the camera in this frame
+    bool input_used = false;       // the navigation device moved the camera in this frame
     uint64_t input_report_ns = 0;  // when the newest device report used here arrived
 };
 
@@ -67,14 +67,16 @@ private:
     void rebase(uint64_t frame);  // clocks keep their values at `frame`, new rules from there
     void take_over(uint64_t frame, const char* why);
     double show_rate_at(double show_time_s) const;
-    void press_buttons(uint64_t frame, const NavSample& input);  // input.button_actions, on press  // simulation seconds per show second there
-    uint16_t body_id(const std::string& name) const;  // throws ControlError
+    void press_buttons(
+        uint64_t frame,
+        const NavSample& input);  // input.button_actions, on press  // simulation seconds per show second there
+    uint16_t body_id(const std::string& name) const;            // throws ControlError
     std::vector<BodyState> states_at(double sim_time_s) const;  // every body, from the ephemeris
 
     const ClusterConfig& cluster_;
     const SceneConfig& scene_;
     ShowScript show_;
-    double dt_;                // show seconds per frame
+    double dt_;  // show seconds per frame
     bool live_ = false;
     bool paused_ = false;
     bool quit_ = false;

@@ -31,11 +31,16 @@ inline Easing easing_from_name(const std::string& name) {
 inline double ease(Easing e, double f) {
     f = std::clamp(f, 0.0, 1.0);
     switch (e) {
-        case Easing::Linear: return f;
-        case Easing::EaseIn: return f * f;
-        case Easing::EaseOut: return f * (2.0 - f);
-        case Easing::EaseInOut: return f * f * (3.0 - 2.0 * f);
-        case Easing::Hold: return f < 1.0 ? 0.0 : 1.0;
+        case Easing::Linear:
+            return f;
+        case Easing::EaseIn:
+            return f * f;
+        case Easing::EaseOut:
+            return f * (2.0 - f);
+        case Easing::EaseInOut:
+            return f * f * (3.0 - 2.0 * f);
+        case Easing::Hold:
+            return f < 1.0 ? 0.0 : 1.0;
     }
     return f;
 }

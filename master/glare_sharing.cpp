@@ -13,8 +13,8 @@ GlareSharing::GlareSharing(const ClusterConfig& cluster)
     for (const auto& c : cluster.channels) frusta_.push_back(c.frustum());
 }
 
-bool GlareSharing::channel_may_see(int channel_index, const glm::dquat& camera_orientation,
-                                   const glm::dvec3& direction, double angular_radius) const {
+bool GlareSharing::channel_may_see(int channel_index, const glm::dquat& camera_orientation, const glm::dvec3& direction,
+                                   double angular_radius) const {
     const glm::dmat3 dome_from_world = dome_from_camera_ * glm::transpose(glm::mat3_cast(camera_orientation));
     return disc_may_touch_frustum(frusta_.at(static_cast<size_t>(channel_index)), dome_from_world,
                                   glare_frame(direction, camera_orientation), angular_radius);

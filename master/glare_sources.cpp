@@ -105,7 +105,8 @@ std::vector<GlareSource> GlareSources::select(const Snapshot& snap) const {
         g.direction = glm::vec3(dir);
         g.angular_radius = static_cast<float>(std::asin(std::min(b.radius_m / d, 1.0)));
         g.irradiance = glm::vec3(e * weight);
-        const GlareVisibility v = analytic_visibility(cam, st.position_m, b.radius_m, snapshot_occluders(snap, *scene_, b.id));
+        const GlareVisibility v =
+            analytic_visibility(cam, st.position_m, b.radius_m, snapshot_occluders(snap, *scene_, b.id));
         g.visible_fraction = static_cast<float>(std::clamp(v.visible_fraction, 0.0, 1.0));
         g.centroid_offset = glm::vec3(v.centroid_offset);
         g.origin = GlareOrigin::Analytic;

@@ -4,7 +4,8 @@
 // one replaces it when the whole cluster reported, master/glare_sharing).
 //   - Stars of the scene (the Sun): always, irradiance = disc radiance x pi sin^2(alpha) x
 //     limb-darkened mean.
-//   - Planets and moons smaller than kMaxBodyRadius: Lambert spheres lit by the Sun, (2/3) albedo E_sun (R/d)^2 Phi(phase).
+//   - Planets and moons smaller than kMaxBodyRadius: Lambert spheres lit by the Sun, (2/3) albedo E_sun (R/d)^2
+//   Phi(phase).
 //   - Catalogue stars brighter than V = 2: zero_mag_flux x 10^(-0.4 V), coloured by B-V.
 // Each is dimmed by the air in front of it (SceneAtmospheres::transmittance). A non-star source
 // counts once its glare one degree away would reach glare.min_display on the dome, fading in up

@@ -21,10 +21,14 @@ int main(int argc, char** argv) {
     std::string events, stats, control;
     bool verbose = false, quiet = false, no_resume = false;
     app.add_option("-c,--config", config, "cluster config (JSON)")->required()->check(CLI::ExistingFile);
-    app.add_option("-n,--frames", frames, "stop before frame N (frames 0..N-1, a resumed show included) and tell the slaves to quit")->check(CLI::Range(1LL, 1LL << 40));
+    app.add_option("-n,--frames", frames,
+                   "stop before frame N (frames 0..N-1, a resumed show included) and tell the slaves to quit")
+        ->check(CLI::Range(1LL, 1LL << 40));
     app.add_option("--events", events, "write per-frame and per-channel events as JSON lines to this file");
     app.add_option("--stats", stats, "keep the anomaly counters in this JSON file (rewritten every second)");
-    app.add_option("--control", control, "take control commands (goto, time rate, play, quit...) on this local socket, or - for standard input");
+    app.add_option(
+        "--control", control,
+        "take control commands (goto, time rate, play, quit...) on this local socket, or - for standard input");
     app.add_flag("--no-resume", no_resume, "start at frame 0 even when the slaves already rendered frames");
     app.add_flag("-v,--verbose", verbose, "debug logging");
     app.add_flag("-q,--quiet", quiet, "warnings and errors only");

@@ -9,17 +9,17 @@ namespace cupola {
 struct MasterCounters {
     uint64_t frames = 0;
     uint64_t snapshots_sent = 0;
-    uint64_t snapshot_resends = 0;   // the barrier waited past resend_interval_ms, or a channel (re)joined
-    uint64_t welcomes_sent = 0;      // answers to hellos from processes that do not know this session
-    uint64_t late_reports = 0;       // reports for a frame other than the current one
-    uint64_t channel_drops = 0;      // a live channel timed out
-    uint64_t channel_joins = 0;      // a channel became live (first time, after a drop, or a new process)
-    uint64_t channel_restarts = 0;   // of those: a new process replaced a live one
-    uint64_t malformed_messages = 0; // authentic, but the body did not decode
-    uint64_t unknown_channel = 0;    // authentic, from a channel id not in the config
+    uint64_t snapshot_resends = 0;    // the barrier waited past resend_interval_ms, or a channel (re)joined
+    uint64_t welcomes_sent = 0;       // answers to hellos from processes that do not know this session
+    uint64_t late_reports = 0;        // reports for a frame other than the current one
+    uint64_t channel_drops = 0;       // a live channel timed out
+    uint64_t channel_joins = 0;       // a channel became live (first time, after a drop, or a new process)
+    uint64_t channel_restarts = 0;    // of those: a new process replaced a live one
+    uint64_t malformed_messages = 0;  // authentic, but the body did not decode
+    uint64_t unknown_channel = 0;     // authentic, from a channel id not in the config
     uint64_t quit_acks = 0;
-    uint64_t control_commands = 0;   // lines from the control channel
-    uint64_t control_errors = 0;     // of those: refused (named in the reply)
+    uint64_t control_commands = 0;  // lines from the control channel
+    uint64_t control_errors = 0;    // of those: refused (named in the reply)
 
     nlohmann::json to_json() const {
         return {{"frames", frames},

@@ -54,9 +54,9 @@ void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const C
     if (settings.exposure)
         snap.settings.exposure = *settings.exposure;
     else
-        snap.settings.exposure = static_cast<float>(auto_exposure && cluster.output.auto_exposure.enabled
-                                                        ? auto_exposure->exposure(snap)
-                                                        : cluster.output.exposure);
+        snap.settings.exposure =
+            static_cast<float>(auto_exposure && cluster.output.auto_exposure.enabled ? auto_exposure->exposure(snap)
+                                                                                     : cluster.output.exposure);
     snap.settings.star_magnitude_limit =
         settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
     if (glare && scene.glare.enabled) {
@@ -168,7 +168,8 @@ int MasterNode::run() {
             }
             ++counters.control_commands;
             spdlog::info("master: control \"{}\" -> {}", req.line.substr(0, 200), reply.substr(0, 200));
-            events.write({{"event", "control"}, {"frame", next_frame}, {"line", req.line.substr(0, 200)}, {"reply", reply}});
+            events.write(
+                {{"event", "control"}, {"frame", next_frame}, {"line", req.line.substr(0, 200)}, {"reply", reply}});
             control->reply(req.client, reply);
         }
     };
@@ -200,15 +201,20 @@ int MasterNode::run() {
                 }
                 hellos[m.sender] = h;
                 const bool was_live = barrier.state(m.sender) == ChannelState::Live;
-                if (rm.opened) barrier.on_restart(m.sender, now);
-                else if (!barrier.on_alive(m.sender, now)) return false;
+                if (rm.opened)
+                    barrier.on_restart(m.sender, now);
+                else if (!barrier.on_alive(m.sender, now))
+                    return false;
                 ++counters.channel_joins;
                 if (rm.opened && was_live) ++counters.channel_restarts;
                 spdlog::info("master: channel {} joined (pid {}, {}){}", m.sender, h.process_id,
                              h.has_frame ? "last frame " + std::to_string(h.last_frame) : "no frame yet",
                              rm.opened && was_live ? ", a new process replacing a live one" : "");
-                events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", frame},
-                              {"pid", h.process_id}, {"new_process", rm.opened}});
+                events.write({{"event", "channel_joined"},
+                              {"channel", m.sender},
+                              {"frame", frame},
+                              {"pid", h.process_id},
+                              {"new_process", rm.opened}});
                 return true;
             }
             if (!rm.verified) return false;  // only hellos are answered before the handshake
@@ -231,8 +237,10 @@ int MasterNode::run() {
                         ++counters.channel_joins;
                         events.write({{"event", "channel_joined"}, {"channel", m.sender}, {"frame", frame}});
                     }
-                    if (sent_ns && rep.snapshot_received_ns >= sent_ns) rep.snapshot_received_ns -= sent_ns;
-                    else rep.snapshot_received_ns = 0;
+                    if (sent_ns && rep.snapshot_received_ns >= sent_ns)
+                        rep.snapshot_received_ns -= sent_ns;
+                    else
+                        rep.snapshot_received_ns = 0;
                     reports[m.sender] = rep;
                     return false;
                 }
@@ -263,7 +271,8 @@ int MasterNode::run() {
             stats.tick(stats_json);
         }
         if (barrier.live_count() < static_cast<int>(ids.size()))
-            spdlog::warn("master: starting with {} of {} channels; the others may join later", barrier.live_count(), ids.size());
+            spdlog::warn("master: starting with {} of {} channels; the others may join later", barrier.live_count(),
+                         ids.size());
     }
     // Resume after the last frame that every joined channel rendered (a restarted master).
     uint64_t start_frame = 0;
@@ -284,7 +293,6 @@ int MasterNode::run() {
             events.write({{"event", "resumed"}, {"frame", start_frame}});
         }
     }
-
 
     GlareSharing glare_sharing(cluster_);
     std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility
@@ -342,12 +350,10 @@ int MasterNode::run() {
         nlohmann::json ch = nlohmann::json::object();
         bool hashes_agree = true;
         for (const auto& [id, rep] : reports) {
-            ch[std::to_string(id)] = {{"hash", rep.snapshot_hash},
-                                      {"render_ms", rep.render_ms},
-                                      {"write_ms", rep.write_ms},
-                                      {"latency_ms", rep.snapshot_received_ns / 1e6},
-                                      {"rejected", rep.packets_rejected},
-                                      {"missed", rep.snapshots_missed}};
+            ch[std::to_string(id)] = {
+                {"hash", rep.snapshot_hash},        {"render_ms", rep.render_ms},
+                {"write_ms", rep.write_ms},         {"latency_ms", rep.snapshot_received_ns / 1e6},
+                {"rejected", rep.packets_rejected}, {"missed", rep.snapshots_missed}};
             if (rep.snapshot_hash != hash) hashes_agree = false;
         }
         if (!hashes_agree) spdlog::error("master: frame {}: a channel reports another snapshot hash", frame);
@@ -361,13 +367,21 @@ int MasterNode::run() {
                              {"offset", {g.centroid_offset.x, g.centroid_offset.y, g.centroid_offset.z}}});
         previous_reports = std::move(reports);
         const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
-        nlohmann::json fe{{"event", "frame"}, {"frame", frame}, {"hash", hash}, {"sim_time_s", snap.sim_time_s},
-                          {"frame_ms", frame_ms}, {"live", barrier.live_count()}, {"channels", ch}, {"glare", glare},
+        nlohmann::json fe{{"event", "frame"},
+                          {"frame", frame},
+                          {"hash", hash},
+                          {"sim_time_s", snap.sim_time_s},
+                          {"frame_ms", frame_ms},
+                          {"live", barrier.live_count()},
+                          {"channels", ch},
+                          {"glare", glare},
                           {"mode", director.live() ? "live" : "show"},
                           {"camera_m", {snap.camera_position_m.x, snap.camera_position_m.y, snap.camera_position_m.z}},
-                          {"camera_q", {snap.camera_orientation.w, snap.camera_orientation.x, snap.camera_orientation.y,
-                                        snap.camera_orientation.z}},
-                          {"flags", snap.settings.flags}, {"exposure", snap.settings.exposure}};
+                          {"camera_q",
+                           {snap.camera_orientation.w, snap.camera_orientation.x, snap.camera_orientation.y,
+                            snap.camera_orientation.z}},
+                          {"flags", snap.settings.flags},
+                          {"exposure", snap.settings.exposure}};
         if (input_ms) fe["input_latency_ms"] = *input_ms;
         events.write(fe);
         ++frames_done;
@@ -413,15 +427,18 @@ int MasterNode::run() {
     const double secs = std::chrono::duration<double>(Clock::now() - run_start).count();
     spdlog::info("master: {} frames in {:.2f} s ({:.2f} frames/s), {} with missing channels; wire: {}", frames_done,
                  secs, frames_done / std::max(secs, 1e-9), frames_incomplete, wire.counters().summary());
-    if (input_latency.count())
-        spdlog::info("master: device report -> snapshot sent: {}", input_latency.summary());
+    if (input_latency.count()) spdlog::info("master: device report -> snapshot sent: {}", input_latency.summary());
     if (glare_sources_)
-        spdlog::info("master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "
-                     "report)",
-                     glare_sharing.counts().measured, glare_sharing.counts().analytic, glare_sharing.counts().missing);
+        spdlog::info(
+            "master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "
+            "report)",
+            glare_sharing.counts().measured, glare_sharing.counts().analytic, glare_sharing.counts().missing);
     stats.write_now(stats_json());
-    events.write({{"event", "end"}, {"frames", frames_done}, {"seconds", secs},
-                  {"rejected", wire.counters().total_rejected()}, {"wire", wire.counters().summary()},
+    events.write({{"event", "end"},
+                  {"frames", frames_done},
+                  {"seconds", secs},
+                  {"rejected", wire.counters().total_rejected()},
+                  {"wire", wire.counters().summary()},
                   {"stats", stats_json()}});
     return 0;
 }

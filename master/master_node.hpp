@@ -25,7 +25,7 @@ struct MasterOptions {
     // A master (re)started while slaves already rendered frames continues the show after the
     // last frame every one of them rendered, so a master restart leaves no channel a gap.
     bool resume = true;
-    std::string control;             // control socket path, "-" for standard input ("" none)
+    std::string control;  // control socket path, "-" for standard input ("" none)
 };
 
 // The snapshot for a frame as the show alone defines it: deterministic in the frame index, so
@@ -60,7 +60,7 @@ private:
     MasterOptions options_;
     std::unique_ptr<SceneAtmospheres> atmospheres_;  // when auto exposure or glare needs them
     std::unique_ptr<AutoExposure> auto_exposure_;
-    std::unique_ptr<GlareSources> glare_sources_;    // when the scene has glare
+    std::unique_ptr<GlareSources> glare_sources_;  // when the scene has glare
     std::atomic<bool> stop_requested_{false};
 };
 

@@ -17,7 +17,8 @@ namespace cupola {
 ShowScript::ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s, std::vector<ShowEvent> events)
     : keys_(std::move(keys)), events_(std::move(events)), frame_interval_s_(frame_interval_s) {
     if (keys_.empty()) throw std::invalid_argument("a show needs at least one keyframe");
-    std::stable_sort(events_.begin(), events_.end(), [](const ShowEvent& a, const ShowEvent& b) { return a.at_s < b.at_s; });
+    std::stable_sort(events_.begin(), events_.end(),
+                     [](const ShowEvent& a, const ShowEvent& b) { return a.at_s < b.at_s; });
 }
 
 ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
@@ -38,15 +39,15 @@ ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
     for (auto& k : list) {
         ShowKeyframe f;
         f.at_s = k.number_in("at_s", 0.0, 1e12);
-        if (!keys.empty() && f.at_s <= keys.back().at_s) k.fail("at_s", "keyframes must be in strictly increasing at_s");
+        if (!keys.empty() && f.at_s <= keys.back().at_s)
+            k.fail("at_s", "keyframes must be in strictly increasing at_s");
         std::string utc = k.string("time_utc");
         try {
             f.sim_time_s = utc_iso_to_j2000_seconds(utc);
         } catch (const std::invalid_argument& e) {
             k.fail("time_utc", e.what());
         }
-        if (k.has("shadow_mode"))
-            f.shadow_mode = shadow_mode_from_name(k.one_of("shadow_mode", shadow_mode_names()));
+        if (k.has("shadow_mode")) f.shadow_mode = shadow_mode_from_name(k.one_of("shadow_mode", shadow_mode_names()));
         f.camera_easing = easing_from_name(k.one_of("easing", easing_names(), "ease_in_out"));
         f.time_easing = easing_from_name(k.one_of("time_easing", easing_names(), "linear"));
         auto c = k.child("camera");
@@ -86,7 +87,8 @@ ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
         for (auto& e : r.array("events")) {
             ShowEvent ev;
             ev.at_s = e.number_in("at_s", 0.0, 1e12);
-            if (e.has("shadow_mode")) ev.shadow_mode = shadow_mode_from_name(e.one_of("shadow_mode", shadow_mode_names()));
+            if (e.has("shadow_mode"))
+                ev.shadow_mode = shadow_mode_from_name(e.one_of("shadow_mode", shadow_mode_names()));
             if (e.has("exposure")) {
                 if (e.raw().at("exposure").is_string()) {
                     e.one_of("exposure", {"auto"});
@@ -142,7 +144,8 @@ CameraPose pose_at(const CameraKey& k, const SceneConfig& scene, double t) {
         const glm::dvec3 zenith = to_world * site_direction(body, *k.observer);
         p.position = st.position_m + zenith * (body.radius_m + k.observer->alt_m);
         glm::dvec3 north = to_world * glm::dvec3(0, 0, 1) - zenith * glm::dot(to_world * glm::dvec3(0, 0, 1), zenith);
-        north = glm::length(north) > 1e-9 ? glm::normalize(north) : glm::normalize(glm::cross(zenith, glm::dvec3(0, 1, 0)));
+        north =
+            glm::length(north) > 1e-9 ? glm::normalize(north) : glm::normalize(glm::cross(zenith, glm::dvec3(0, 1, 0)));
         const glm::dvec3 east = glm::cross(north, zenith);
         const double az = glm::radians(k.observer->look_azimuth_deg), el = glm::radians(k.observer->look_elevation_deg);
         fwd = k.look_at ? body_position(scene, *k.look_at, t) - p.position
@@ -192,7 +195,8 @@ Snapshot ShowScript::evaluate(double show_time_s, const SceneConfig& scene) cons
     s.camera_position_m = pa.position + (pb.position - pa.position) * smooth;
     s.camera_orientation = glm::normalize(glm::slerp(pa.orientation, pb.orientation, smooth));
     for (const auto& body : scene.bodies) s.bodies.push_back(body_state(body, t));
-    s.settings.flags = with_shadow_mode(s.settings.flags, settings_at(show_time_s).shadow_mode.value_or(scene.shadows.mode));
+    s.settings.flags =
+        with_shadow_mode(s.settings.flags, settings_at(show_time_s).shadow_mode.value_or(scene.shadows.mode));
     return s;
 }
 

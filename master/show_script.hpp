@@ -45,10 +45,10 @@ struct ObserverSite {
 };
 
 struct CameraKey {
-    std::optional<uint16_t> anchor;       // body id
+    std::optional<uint16_t> anchor;  // body id
     glm::dvec3 offset_m{0.0};
     std::optional<ObserverSite> observer;  // on the anchor's surface (replaces offset_m)
-    std::optional<uint16_t> look_at;      // body id
+    std::optional<uint16_t> look_at;       // body id
     glm::dvec3 look_direction{0, 1, 0};
     glm::dvec3 up{0, 0, 1};
     double target_elevation_deg = 0.0;
@@ -58,7 +58,7 @@ struct ShowKeyframe {
     double at_s = 0.0;
     double sim_time_s = 0.0;
     CameraKey camera;
-    std::optional<ShadowMode> shadow_mode;  // from this keyframe on
+    std::optional<ShadowMode> shadow_mode;     // from this keyframe on
     Easing camera_easing = Easing::EaseInOut;  // this key -> the next
     Easing time_easing = Easing::Linear;
 };
@@ -67,16 +67,16 @@ struct ShowKeyframe {
 struct ShowEvent {
     double at_s = 0.0;
     std::optional<ShadowMode> shadow_mode;
-    std::optional<float> exposure;              // fixed exposure from here on
-    bool exposure_auto = false;                 // back to the cluster's own exposure
+    std::optional<float> exposure;  // fixed exposure from here on
+    bool exposure_auto = false;     // back to the cluster's own exposure
     std::optional<float> star_magnitude_limit;
 };
 
 // The render settings a show asks for at a show time (events and keyframes up to then).
 struct ShowSettings {
-    std::optional<ShadowMode> shadow_mode;       // none: the scene's default
-    std::optional<float> exposure;               // none: the cluster's (auto) exposure
-    std::optional<float> star_magnitude_limit;   // none: the scene's limit
+    std::optional<ShadowMode> shadow_mode;      // none: the scene's default
+    std::optional<float> exposure;              // none: the cluster's (auto) exposure
+    std::optional<float> star_magnitude_limit;  // none: the scene's limit
 };
 
 class ShowScript {

@@ -60,7 +60,8 @@ void AsyncFrameWriter::run() {
             write_frame(dir_, job.image, job.meta, formats_, job.exposure);
         } catch (const std::exception& e) {
             ok = false;
-            spdlog::error("frame {} of channel {} was not written: {}", job.meta.frame, job.meta.channel_name, e.what());
+            spdlog::error("frame {} of channel {} was not written: {}", job.meta.frame, job.meta.channel_name,
+                          e.what());
         }
         lock.lock();
         busy_ = false;

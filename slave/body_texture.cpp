@@ -25,7 +25,9 @@ uint32_t hash32(uint32_t x) {  // lowbias32 (Chris Wellons)
     x ^= x >> 16;
     return x;
 }
-float hash01(uint32_t a, uint32_t b) { return static_cast<float>(hash32(a * 0x9E3779B9U ^ hash32(b)) >> 8) / 16777216.0f; }
+float hash01(uint32_t a, uint32_t b) {
+    return static_cast<float>(hash32(a * 0x9E3779B9U ^ hash32(b)) >> 8) / 16777216.0f;
+}
 
 // Value noise on a periodic lattice (period px in x) so the longitude seam is continuous.
 float value_noise(float x, float y, int period, uint32_t seed) {
@@ -46,7 +48,9 @@ float value_noise(float x, float y, int period, uint32_t seed) {
 BodyImage generate_cratered_surface(int width, int height, unsigned seed) {
     BodyImage img{width, height, std::vector<float>(static_cast<size_t>(width) * height * 3)};
     constexpr double pi = std::numbers::pi;
-    struct Crater { double x, y, z, radius, depth; };
+    struct Crater {
+        double x, y, z, radius, depth;
+    };
     std::vector<Crater> craters;
     for (uint32_t i = 0; i < 160; ++i) {
         const double z = 2.0 * hash01(seed + 1, i) - 1.0, lon = 2.0 * pi * hash01(seed + 2, i);
@@ -72,8 +76,10 @@ BodyImage generate_cratered_surface(int width, int height, unsigned seed) {
                 shade *= 0.7;
             for (const auto& c : craters) {
                 const double d = std::acos(std::clamp(px * c.x + py * c.y + pz * c.z, -1.0, 1.0)) / c.radius;
-                if (d < 0.85) shade *= 1.0 - 0.25 * c.depth;                         // floor
-                else if (d < 1.15) shade *= 1.0 + 0.35 * c.depth * (1.15 - d) / 0.3;  // bright rim
+                if (d < 0.85)
+                    shade *= 1.0 - 0.25 * c.depth;  // floor
+                else if (d < 1.15)
+                    shade *= 1.0 + 0.35 * c.depth * (1.15 - d) / 0.3;  // bright rim
             }
             float* p = &img.rgb[(static_cast<size_t>(y) * width + x) * 3];
             p[0] = p[1] = p[2] = static_cast<float>(std::clamp(shade, 0.0, 1.0));

@@ -8,7 +8,8 @@ namespace cupola {
 
 namespace {
 GlTexture make_lut(double limb_u) {
-    const shading::Texture2DData t = eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
+    const shading::Texture2DData t =
+        eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
     return GlTexture(t.width, t.height, t.texels.data(), GL_LINEAR);
 }
 }  // namespace

@@ -7,9 +7,9 @@
 namespace cupola {
 
 struct EglContextInfo {
-    std::string platform;  // "device" or "surfaceless"
-    int device_index = -1; // the EGL device used, -1 for surfaceless
-    int device_count = 0;  // EGL devices enumerated
+    std::string platform;   // "device" or "surfaceless"
+    int device_index = -1;  // the EGL device used, -1 for surfaceless
+    int device_count = 0;   // EGL devices enumerated
     std::string vendor, renderer, version;
 };
 

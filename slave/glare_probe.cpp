@@ -15,9 +15,9 @@
 namespace cupola {
 
 namespace {
-constexpr int kSets = 3;                          // query sets in flight at most
+constexpr int kSets = 3;  // query sets in flight at most
 constexpr int kQueriesPerSource = 1 + GlareMeasurement::kWedges;
-constexpr double kProbeMargin = 1.15;             // probe half-width / disc radius (tangents)
+constexpr double kProbeMargin = 1.15;  // probe half-width / disc radius (tangents)
 }  // namespace
 
 struct GlareProbe::Set {
@@ -40,7 +40,8 @@ GlareProbe::GlareProbe(const ClusterConfig& cluster, const ChannelConfig& channe
       target_(scene.glare.probe_size, scene.glare.probe_size),
       query_("fullscreen.vert", "glare_query.frag") {
     if (static_cast<int>(cluster.channels.size()) > kMaxChannels)
-        throw std::runtime_error("glare: at most " + std::to_string(kMaxChannels) + " channels can share glare visibility (the cluster has " +
+        throw std::runtime_error("glare: at most " + std::to_string(kMaxChannels) +
+                                 " channels can share glare visibility (the cluster has " +
                                  std::to_string(cluster.channels.size()) + ")");
     own_frustum_only_ = scene.glare.visibility == GlareVisibilityMode::PerChannel;
     for (size_t i = 0; i < cluster.channels.size(); ++i) {
@@ -78,8 +79,9 @@ void GlareProbe::measure(const Snapshot& snap, BodyPass& bodies, const SunLight&
     for (auto& s : sets_)
         if (!s->pending) set = s.get();
     if (!set) {
-        set = std::min_element(sets_.begin(), sets_.end(), [](const auto& a, const auto& b) { return a->issued < b->issued; })
-                  ->get();
+        set = std::min_element(sets_.begin(), sets_.end(), [](const auto& a, const auto& b) {
+                  return a->issued < b->issued;
+              })->get();
         ++counts_.sets_dropped_late;
     }
     set->items.clear();
@@ -123,7 +125,8 @@ void GlareProbe::measure(const Snapshot& snap, BodyPass& bodies, const SunLight&
             const SphereView sphere = make_sphere_view(view, st.position_m, b.radius_m);
             if (sphere.distance_m - b.radius_m >= source_near_m) continue;  // behind the source
             // Outside the probe's cone altogether?
-            const double off = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(sphere.center_dir - glm::dvec3(0, 0, -1))));
+            const double off =
+                2.0 * std::asin(std::min(1.0, 0.5 * glm::length(sphere.center_dir - glm::dvec3(0, 0, -1))));
             if (!sphere.fullscreen && off > std::atan(t * 1.5) + std::asin(std::min(sphere.sin_alpha, 1.0))) continue;
             bodies.draw(view, b, st, sphere, light, shadows, no_casters);
         }

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
     app.add_option("--egl-device", egl_device, "EGL device index (-1: first usable, then Mesa surfaceless)")
         ->check(CLI::Range(-1, 64));
     app.add_option("--formats", formats, "png and/or exr (default: from the config)")
-        ->check(CLI::IsMember({"png", "exr"}))->delimiter(',');
+        ->check(CLI::IsMember({"png", "exr"}))
+        ->delimiter(',');
     app.add_option("--idle-timeout", idle_timeout, "exit when no snapshot arrives for this many seconds")
         ->check(CLI::Range(1, 86400));
     app.add_option("--stats", stats, "keep the anomaly counters in this JSON file (rewritten every second)");

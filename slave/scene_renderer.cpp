@@ -86,9 +86,9 @@ struct SceneRenderer::Impl {
     SunPass sun;
     BodyPass bodies;
     std::map<uint16_t, std::unique_ptr<GpuAtmosphere>> atmospheres;  // by body id
-    std::unique_ptr<AtmospherePass> atmosphere;                       // only when some body has one
-    ShadowCasting casting;          // which casters shadow which receiver, per frame (CPU, double)
-    EclipseShadowUniforms shadows;  // the eclipse table and uniforms of the shadowed passes
+    std::unique_ptr<AtmospherePass> atmosphere;                      // only when some body has one
+    ShadowCasting casting;                    // which casters shadow which receiver, per frame (CPU, double)
+    EclipseShadowUniforms shadows;            // the eclipse table and uniforms of the shadowed passes
     std::unique_ptr<GlareProbe> glare_probe;  // only when the scene has glare
     std::unique_ptr<GlarePass> glare;
     std::vector<GlareMeasurement> no_measurements;
@@ -134,9 +134,9 @@ Image SceneRenderer::render(const Snapshot& snap) {
     // The light: the first BodyKind::Star in the snapshot.
     SunLight light;
     for (const auto& st : snap.bodies) {
-        if (st.id >= m.scene.bodies.size()) throw std::runtime_error("snapshot names body id " + std::to_string(st.id) +
-                                                                     " but the scene has " +
-                                                                     std::to_string(m.scene.bodies.size()) + " bodies");
+        if (st.id >= m.scene.bodies.size())
+            throw std::runtime_error("snapshot names body id " + std::to_string(st.id) + " but the scene has " +
+                                     std::to_string(m.scene.bodies.size()) + " bodies");
         const BodyConfig& b = m.scene.bodies[st.id];
         if (b.kind == BodyKind::Star && !light.present)
             light = {true, st.position_m, b.radius_m, b.radiance, b.limb_darkening_u};
@@ -144,7 +144,11 @@ Image SceneRenderer::render(const Snapshot& snap) {
 
     // Passes 2 and 3: bodies far to near (painter's order); each disc is opaque and exact in
     // angle, so no depth buffer is needed between bodies.
-    struct Item { const BodyState* state; const BodyConfig* body; SphereView sphere; };
+    struct Item {
+        const BodyState* state;
+        const BodyConfig* body;
+        SphereView sphere;
+    };
     std::vector<Item> items;
     for (const auto& st : snap.bodies) {
         const BodyConfig& b = m.scene.bodies[st.id];

@@ -232,8 +232,8 @@ int SlaveNode::run() {
         fresh_session = false;
         rendered_in_session = true;
         ++counters.frames_rendered;
-        spdlog::debug("slave {}: frame {} rendered in {:.1f} ms, queued for writing after {:.1f} ms", channel_.name, rep.frame,
-                      rep.render_ms, rep.write_ms);
+        spdlog::debug("slave {}: frame {} rendered in {:.1f} ms, queued for writing after {:.1f} ms", channel_.name,
+                      rep.frame, rep.render_ms, rep.write_ms);
     }
     return finish(0);
 }

@@ -9,11 +9,11 @@
 namespace cupola {
 
 struct SlaveOptions {
-    std::string out_dir;       // frame files go here
-    int egl_device = -2;       // -2: from the config
-    int idle_timeout_s = 30;   // exit when no snapshot arrives for this long (master gone)
+    std::string out_dir;               // frame files go here
+    int egl_device = -2;               // -2: from the config
+    int idle_timeout_s = 30;           // exit when no snapshot arrives for this long (master gone)
     std::vector<std::string> formats;  // empty: from the config
-    std::string stats_file;    // the counters as JSON, rewritten every second (--stats)
+    std::string stats_file;            // the counters as JSON, rewritten every second (--stats)
 };
 
 class SlaveNode {

@@ -39,7 +39,8 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
 
 glm::vec4 sphere_distances(const SphereView& sphere) {
     const double d = sphere.distance_m, r = sphere.radius_m;
-    return glm::vec4(static_cast<float>(d), static_cast<float>(r), static_cast<float>(d - r), static_cast<float>(d + r));
+    return glm::vec4(static_cast<float>(d), static_cast<float>(r), static_cast<float>(d - r),
+                     static_cast<float>(d + r));
 }
 
 void draw_sphere(const GlProgram& program, const ChannelView& view, const SphereView& sphere) {

@@ -11,7 +11,7 @@
 namespace cupola {
 
 struct SphereView {
-    double distance_m = 0.0;     // camera to centre
+    double distance_m = 0.0;  // camera to centre
     double radius_m = 0.0;
     glm::dvec3 center_dir{0.0};  // unit, channel frame
     double sin_alpha = 0.0;      // R / d (>= 1: camera inside or on the sphere)
@@ -19,7 +19,7 @@ struct SphereView {
     // so every body sits at the same distance and angular sizes are exact. Its normal points at
     // the camera position (not along the view axis); a fallback axis keeps it valid at the zenith.
     std::array<glm::vec3, 4> corners{};
-    bool fullscreen = false;     // camera too close for a billboard: cover the whole viewport
+    bool fullscreen = false;  // camera too close for a billboard: cover the whole viewport
 
     static constexpr double kScaledDistance = 100.0;
     static constexpr double kNear = 0.5, kFar = 1.0e5;

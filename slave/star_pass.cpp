@@ -13,9 +13,9 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     data.reserve(stars.size() * 5);
     for (const auto& s : stars) {
         const glm::dvec3 d = s.direction();
-        data.insert(data.end(), {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
-                                 static_cast<float>(config.zero_mag_flux * std::pow(10.0, -0.4 * s.v_mag)),
-                                 s.b_minus_v});
+        data.insert(data.end(),
+                    {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
+                     static_cast<float>(config.zero_mag_flux * std::pow(10.0, -0.4 * s.v_mag)), s.b_minus_v});
         magnitudes_.push_back(s.v_mag);
     }
     vertices_.upload(data);
@@ -33,10 +33,11 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     // Guard band: stars whose centre lies just outside still spill light into the image.
     const int guard = 16;
     const double gx = guard / ppt_x, gy = guard / ppt_y;
-    const ChannelFrustum wide(f.orientation(),
-                              FovDeg{glm::degrees(std::atan(f.tan_left() + gx)), glm::degrees(std::atan(f.tan_right() + gx)),
-                                     glm::degrees(std::atan(f.tan_up() + gy)), glm::degrees(std::atan(f.tan_down() + gy))},
-                              f.width() + 2 * guard, f.height() + 2 * guard);
+    const ChannelFrustum wide(
+        f.orientation(),
+        FovDeg{glm::degrees(std::atan(f.tan_left() + gx)), glm::degrees(std::atan(f.tan_right() + gx)),
+               glm::degrees(std::atan(f.tan_up() + gy)), glm::degrees(std::atan(f.tan_down() + gy))},
+        f.width() + 2 * guard, f.height() + 2 * guard);
     glViewport(-guard, -guard, f.width() + 2 * guard, f.height() + 2 * guard);
 
     program_.use();

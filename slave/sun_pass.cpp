@@ -12,8 +12,9 @@ void SunPass::draw(const ChannelView& view, const BodyConfig& body, const Sphere
     const double extent = body.corona > 0.0 ? kCoronaExtent : 1.0;
     SphereView cover = sphere;
     if (extent > 1.0 && sphere.sin_alpha * extent < 0.99)
-        cover = make_sphere_view(view, view.camera_position_m + view.channel_to_world * (sphere.center_dir * sphere.distance_m),
-                                 sphere.radius_m * extent);
+        cover = make_sphere_view(
+            view, view.camera_position_m + view.channel_to_world * (sphere.center_dir * sphere.distance_m),
+            sphere.radius_m * extent);
     program_.use();
     program_.set("u_radiance", glm::vec3(body.tint) * static_cast<float>(body.radiance));
     program_.set("u_limb_u", static_cast<float>(body.limb_darkening_u));

@@ -174,8 +174,8 @@ TEST(ValidationSet, LimbBandRaysGrazeTheRim) {
         for (const auto& c : at::validation_set(p)) {
             if (c.camera != "limb") continue;
             const double vz = c.query.view_zenith_deg, mu = std::cos(vz * kDeg);
-            ASSERT_GT(vz, tangent_vz);                // below the ray tangent to the top sphere
-            ASSERT_LT(vz, horizon_vz + 2.0 + 1e-9);   // at most 2 deg below the ground horizon
+            ASSERT_GT(vz, tangent_vz);               // below the ray tangent to the top sphere
+            ASSERT_LT(vz, horizon_vz + 2.0 + 1e-9);  // at most 2 deg below the ground horizon
             ASSERT_TRUE(at::enter_atmosphere(r, mu, R, top).intersects);
             // Closest approach of the (extended) ray: below the top of the atmosphere, and for the
             // rays that hit the ground, within the 2 deg band (a few tens of km "under" the rim).
@@ -298,8 +298,8 @@ TEST_F(EarthReferenceDataset, HoldsEveryValidationCaseInOrder) {
         ASSERT_GE(row.luminance, 0.0) << "row " << i;
         ASSERT_GE(row.luminance_stderr, 0.0) << "row " << i;
         const double r = p.bottom_radius + std::max(row.c.query.altitude_m, at::kMinCameraAltitude);
-        const auto e = at::enter_atmosphere(r, std::cos(row.c.query.view_zenith_deg * kDeg), p.bottom_radius,
-                                            p.top_radius);
+        const auto e =
+            at::enter_atmosphere(r, std::cos(row.c.query.view_zenith_deg * kDeg), p.bottom_radius, p.top_radius);
         ASSERT_EQ(row.hits_ground, at::ray_hits_ground(e.r, e.mu, p.bottom_radius)) << "row " << i;
     }
 }
@@ -313,9 +313,8 @@ TEST_F(EarthReferenceDataset, SampledRowsAreReproduced) {
     const int n = d().directions;
     // Spread over the file: every camera, every sun zenith, twilight (95 deg) and the limb included.
     const std::vector<std::size_t> sample = {
-        index_of("ground", 30.0, 0, n),        index_of("ground", 95.0, n / 3, n),
-        index_of("10km", 65.0, n - 1, n),      index_of("100km", 88.0, n / 2, n),
-        index_of("1000km", 30.0, n / 5, n),    index_of("limb", 95.0, (2 * n) / 3, n),
+        index_of("ground", 30.0, 0, n),    index_of("ground", 95.0, n / 3, n), index_of("10km", 65.0, n - 1, n),
+        index_of("100km", 88.0, n / 2, n), index_of("1000km", 30.0, n / 5, n), index_of("limb", 95.0, (2 * n) / 3, n),
     };
     for (std::size_t i : sample) {
         ASSERT_LT(i, d().rows.size());

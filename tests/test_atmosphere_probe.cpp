@@ -15,8 +15,9 @@ namespace {
 std::pair<int, std::string> run(const std::string& cmd) { return test::run_shell(cmd); }
 
 std::string probe(const std::string& body = "earth") {
-    return "CUPOLA_CACHE_DIR=" + test::scratch_dir("atmosphere_probe_cache") + " " + test::bin_path("cupola-atmosphere") +
-           " --scene " + test::source_path("configs/scenes/earth-physical.json") + " --body " + body + " --paths 64";
+    return "CUPOLA_CACHE_DIR=" + test::scratch_dir("atmosphere_probe_cache") + " " +
+           test::bin_path("cupola-atmosphere") + " --scene " + test::source_path("configs/scenes/earth-physical.json") +
+           " --body " + body + " --paths 64";
 }
 }  // namespace
 
@@ -42,7 +43,8 @@ TEST(AtmosphereProbe, AnswersOneJsonObjectPerQueryLine) {
     // The four numbers as arguments give the same answer as on stdin.
     const auto [s2, one] = run(probe() + " --model medium 0 60 30 0");
     ASSERT_EQ(s2, 0);
-    EXPECT_EQ(nlohmann::json::parse(one)["production"], nlohmann::json::parse(out.substr(0, out.find('\n')))["production"]);
+    EXPECT_EQ(nlohmann::json::parse(one)["production"],
+              nlohmann::json::parse(out.substr(0, out.find('\n')))["production"]);
 }
 
 TEST(AtmosphereProbe, BadLinesAndBadArgumentsAreNamed) {

@@ -113,7 +113,8 @@ TEST(ProductionTables, TransmittanceMappingRoundTripsAtTexelCentresAndEdges) {
             // Even indices are texel edges, odd ones texel centres (edges outside [0.5/n, 1 - 0.5/n]
             // clamp to the end rows by design, so only the inner range round-trips).
             const glm::vec2 uv(i / (2.0f * size.x), j / (2.0f * size.y));
-            if (uv.x < 0.5f / size.x || uv.x > 1.0f - 0.5f / size.x || uv.y < 0.5f / size.y || uv.y > 1.0f - 0.5f / size.y)
+            if (uv.x < 0.5f / size.x || uv.x > 1.0f - 0.5f / size.x || uv.y < 0.5f / size.y ||
+                uv.y > 1.0f - 0.5f / size.y)
                 continue;
             const glm::vec2 rm = sh::atm_transmittance_r_mu(a, uv, size);
             const glm::vec2 back = sh::atm_transmittance_uv(a, rm.x, rm.y, size);
@@ -123,7 +124,8 @@ TEST(ProductionTables, TransmittanceMappingRoundTripsAtTexelCentresAndEdges) {
             EXPECT_NEAR(back.y, uv.y, 0.1 / size.y) << i << "," << j;
         }
     // The first and last texel centres are the ends of the parameter ranges.
-    const glm::vec2 ground_horizon = sh::atm_transmittance_r_mu(a, glm::vec2(1.0f - 0.5f / size.x, 0.5f / size.y), size);
+    const glm::vec2 ground_horizon =
+        sh::atm_transmittance_r_mu(a, glm::vec2(1.0f - 0.5f / size.x, 0.5f / size.y), size);
     EXPECT_NEAR(ground_horizon.x, a.bottom_radius, 1.0);
     EXPECT_NEAR(ground_horizon.y, 0.0, 1e-3);
     const glm::vec2 top_zenith = sh::atm_transmittance_r_mu(a, glm::vec2(0.5f / size.x, 1.0f - 0.5f / size.y), size);
@@ -277,27 +279,30 @@ TEST(ProductionHardCases, SunBelowTheHorizonDarkensTheGroundSky) {
 
 namespace {
 const at::ReferenceDataset& earth_reference() {
-    static const at::ReferenceDataset d = at::read_reference_dataset(source_path("data/atmosphere/earth_reference.csv"));
+    static const at::ReferenceDataset d =
+        at::read_reference_dataset(source_path("data/atmosphere/earth_reference.csv"));
     return d;
 }
 
 void print_report(const std::string& level, const at::AccuracyReport& r) {
-    std::printf("%s: %-7s %5s %5s %8s %8s %8s %8s %8s\n", level.c_str(), "camera", "sun", "n", "median", "p99",
-                "bias", "duv_med", "duv_p99");
+    std::printf("%s: %-7s %5s %5s %8s %8s %8s %8s %8s\n", level.c_str(), "camera", "sun", "n", "median", "p99", "bias",
+                "duv_med", "duv_p99");
     for (const auto& g : r.groups)
         std::printf("%s: %-7s %5.0f %5d %8.4f %8.4f %+8.4f %8.4f %8.4f\n", level.c_str(), g.camera.c_str(),
                     g.sun_zenith_deg, g.used, g.median, g.p99, g.mean_signed, g.chroma_median, g.chroma_p99);
-    std::printf("%s: overall n %d (reference-limited %d, missing the atmosphere %d) median %.4f p99 %.4f duv median %.4f p99 %.4f\n",
-                level.c_str(), r.overall.used, r.overall.reference_limited, r.overall.skipped, r.overall.median,
-                r.overall.p99, r.overall.chroma_median, r.overall.chroma_p99);
+    std::printf(
+        "%s: overall n %d (reference-limited %d, missing the atmosphere %d) median %.4f p99 %.4f duv median %.4f p99 "
+        "%.4f\n",
+        level.c_str(), r.overall.used, r.overall.reference_limited, r.overall.skipped, r.overall.median, r.overall.p99,
+        r.overall.chroma_median, r.overall.chroma_p99);
 }
 }  // namespace
 
 TEST(ProductionVsReference, DefaultModelMeetsTheErrorTargetsOverall) {
     const auto& ref = earth_reference();
     ASSERT_EQ(ref.hash, at::AtmosphereParameters::earth().hash_hex()) << "stale reference dataset";
-    const at::ProductionAtmosphere m(at::AtmosphereParameters::earth(), at::production_quality(at::kDefaultProductionQuality),
-                                     no_cache());
+    const at::ProductionAtmosphere m(at::AtmosphereParameters::earth(),
+                                     at::production_quality(at::kDefaultProductionQuality), no_cache());
     const at::AccuracyReport r = at::measure_accuracy(m, ref);
     print_report(at::kDefaultProductionQuality, r);
     ASSERT_EQ(r.groups.size(), 20u);  // 5 cameras x 4 suns
@@ -317,7 +322,8 @@ TEST(ProductionVsReference, DefaultModelMeetsTheErrorTargetsOverall) {
 
 TEST(ProductionVsReference, TheAnalyticFastModeIsMeasuredAndWorseThanTheTables) {
     const auto& ref = earth_reference();
-    const at::ProductionAtmosphere fast(at::AtmosphereParameters::earth(), at::production_quality("analytic"), no_cache());
+    const at::ProductionAtmosphere fast(at::AtmosphereParameters::earth(), at::production_quality("analytic"),
+                                        no_cache());
     const at::ProductionAtmosphere def(at::AtmosphereParameters::earth(), at::production_quality("medium"), no_cache());
     const at::AccuracyReport rf = at::measure_accuracy(fast, ref), rd = at::measure_accuracy(def, ref);
     print_report("analytic", rf);

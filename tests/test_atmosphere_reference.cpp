@@ -154,8 +154,8 @@ TEST(AtmosphereToy, VerticalOpticalDepthMatchesClosedForm) {
     for (double h : {0.0, 500.0, 5000.0, 20000.0, 45000.0}) {
         const double r = p.bottom_radius + h;
         const glm::dvec3 d = ri.column_density(r, 1.0, p.top_radius - r);
-        const double ray = p.rayleigh_scale_height * (std::exp(-h / p.rayleigh_scale_height) -
-                                                      std::exp(-htop / p.rayleigh_scale_height));
+        const double ray = p.rayleigh_scale_height *
+                           (std::exp(-h / p.rayleigh_scale_height) - std::exp(-htop / p.rayleigh_scale_height));
         const double mie =
             p.mie_scale_height * (std::exp(-h / p.mie_scale_height) - std::exp(-htop / p.mie_scale_height));
         EXPECT_NEAR(d.x, ray, 1e-9 * ray) << h;
@@ -229,9 +229,9 @@ TEST(AtmospherePhase, IntegrateToOneOverTheSphere) {
     // Cornette-Shanks with g = 0 is the Rayleigh phase function.
     EXPECT_NEAR(at::cornette_shanks_phase(0.0, 0.3), at::rayleigh_phase(0.3), 1e-15);
     // Without its (2 + g^2) factor the normalisation would be off: the factor matters.
-    EXPECT_GT(std::abs(integrate([](double nu) { return at::cornette_shanks_phase(0.8, nu) * (2.0 + 0.64) / 2.0; }) -
-                       1.0),
-              0.1);
+    EXPECT_GT(
+        std::abs(integrate([](double nu) { return at::cornette_shanks_phase(0.8, nu) * (2.0 + 0.64) / 2.0; }) - 1.0),
+        0.1);
 }
 
 // ---------------------------------------------------------------- physical sanity
@@ -239,16 +239,16 @@ TEST(AtmospherePhase, IntegrateToOneOverTheSphere) {
 TEST(AtmosphereSanity, ZenithSkyIsBlueAndSunsetHorizonIsRed) {
     const at::ReferenceIntegrator ri(at::AtmosphereParameters::earth(), single_only());
     const auto noon = ri.sky({0.0, 0.0, 30.0, 0.0});
-    std::cout << "[ zenith, sun 30 ] rgb " << noon.rgb.x << " " << noon.rgb.y << " " << noon.rgb.z
-              << "  L " << noon.luminance << " cd/m^2 (single scattering)\n";
+    std::cout << "[ zenith, sun 30 ] rgb " << noon.rgb.x << " " << noon.rgb.y << " " << noon.rgb.z << "  L "
+              << noon.luminance << " cd/m^2 (single scattering)\n";
     EXPECT_GT(noon.rgb.z, noon.rgb.y);
     EXPECT_GT(noon.rgb.y, noon.rgb.x);
     EXPECT_GT(noon.rgb.x, 0.0);
     EXPECT_FALSE(noon.hits_ground);
     const auto sunset = ri.sky({0.0, 85.0, 88.0, 0.0});
     const double rb_noon = noon.rgb.x / noon.rgb.z, rb_sunset = sunset.rgb.x / sunset.rgb.z;
-    std::cout << "[ horizon toward sun, sun 88 ] rgb " << sunset.rgb.x << " " << sunset.rgb.y << " "
-              << sunset.rgb.z << "  r/b " << rb_sunset << " vs noon zenith " << rb_noon << "\n";
+    std::cout << "[ horizon toward sun, sun 88 ] rgb " << sunset.rgb.x << " " << sunset.rgb.y << " " << sunset.rgb.z
+              << "  r/b " << rb_sunset << " vs noon zenith " << rb_noon << "\n";
     EXPECT_GT(rb_sunset, 3.0 * rb_noon);
     EXPECT_GT(sunset.rgb.x, sunset.rgb.z);
 }
@@ -306,9 +306,9 @@ TEST(AtmosphereSanity, MultipleScatteringAddsAPositiveShare) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const double share = sky.multiple_luminance / sky.luminance;
     std::cout << "[ zenith, sun 30, 4 orders ] L " << sky.luminance << " cd/m^2, single " << sky.single_luminance
-              << ", multiple " << sky.multiple_luminance << " +- " << sky.multiple_luminance_stderr
-              << " (share " << share << "), rgb " << sky.rgb.x << " " << sky.rgb.y << " " << sky.rgb.z << ", "
-              << ms << " ms for " << s.ms_paths << " paths\n";
+              << ", multiple " << sky.multiple_luminance << " +- " << sky.multiple_luminance_stderr << " (share "
+              << share << "), rgb " << sky.rgb.x << " " << sky.rgb.y << " " << sky.rgb.z << ", " << ms << " ms for "
+              << s.ms_paths << " paths\n";
     EXPECT_GT(sky.multiple_luminance, 4.0 * sky.multiple_luminance_stderr);
     EXPECT_GT(share, 0.05);
     EXPECT_LT(share, 0.40);
@@ -357,8 +357,8 @@ TEST(AtmosphereHardCases, LimbFromOrbitIsABrightRim) {
         return ri.sky({alt, vz, 0.0, 0.0});
     };
     const auto l20 = grazing(20000.0), l50 = grazing(50000.0), l200 = grazing(200000.0);
-    std::cout << "[ limb from 1000 km ] L(20 km) " << l20.luminance << "  L(50 km) " << l50.luminance
-              << "  L(200 km) " << l200.luminance << "\n";
+    std::cout << "[ limb from 1000 km ] L(20 km) " << l20.luminance << "  L(50 km) " << l50.luminance << "  L(200 km) "
+              << l200.luminance << "\n";
     EXPECT_TRUE(std::isfinite(l20.luminance));
     EXPECT_FALSE(l20.hits_ground);
     EXPECT_GT(l20.luminance, l200.luminance);
@@ -405,8 +405,8 @@ TEST(AtmosphereMonteCarlo, StandardErrorMatchesSeedScatter) {
     double var = 0.0;
     for (double x : means) var += (x - m) * (x - m) / (seeds - 1);
     const double ratio = std::sqrt(var) / e;
-    std::cout << "[ MC ] mean " << m << " seed-to-seed sd " << std::sqrt(var) << " reported stderr " << e
-              << " ratio " << ratio << "\n";
+    std::cout << "[ MC ] mean " << m << " seed-to-seed sd " << std::sqrt(var) << " reported stderr " << e << " ratio "
+              << ratio << "\n";
     EXPECT_GT(e, 0.0);
     EXPECT_GT(ratio, 0.5);
     EXPECT_LT(ratio, 1.8);
@@ -424,9 +424,9 @@ TEST(AtmosphereMonteCarlo, FirstOrderEstimateMatchesQuadrature) {
     const at::ReferenceIntegrator ri(at::AtmosphereParameters::earth(), s);
     // Zenith; 1 m above the ground looking down (ground-dominated); sunset horizon; the globe
     // from 1000 km (entry point, ground and sky); an aircraft looking just below the horizon.
-    for (const at::SkyQuery& q : {at::SkyQuery{0.0, 0.0, 30.0, 0.0}, at::SkyQuery{0.0, 120.0, 40.0, 0.0},
-                                  at::SkyQuery{0.0, 89.0, 88.0, 0.0}, at::SkyQuery{1.0e6, 150.0, 30.0, 0.0},
-                                  at::SkyQuery{8000.0, 95.0, 60.0, 180.0}}) {
+    for (const at::SkyQuery& q :
+         {at::SkyQuery{0.0, 0.0, 30.0, 0.0}, at::SkyQuery{0.0, 120.0, 40.0, 0.0}, at::SkyQuery{0.0, 89.0, 88.0, 0.0},
+          at::SkyQuery{1.0e6, 150.0, 30.0, 0.0}, at::SkyQuery{8000.0, 95.0, 60.0, 180.0}}) {
         const auto sky = ri.sky(q);
         const double det = sky.single_luminance + sky.ground_luminance;
         std::cout << "[ order 1 ] alt " << q.altitude_m << " vz " << q.view_zenith_deg << ": quadrature " << det

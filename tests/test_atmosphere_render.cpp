@@ -53,12 +53,14 @@ SceneConfig make_scene(const std::string& tag, const std::string& model, bool ro
     for (int i = 0; i < 8; ++i) hdr += std::string("\x80\x80\x80\x81", 4);  // RGBE 1.0
     test::write_text(dir + "/white.hdr", hdr);
     test::write_text(dir + "/stars.csv", "ra_deg,dec_deg,vmag,bv,name\n10.0,10.0,5.0,0.6,Faint\n");
-    const std::string atm = model.empty() ? "" : R"(, "atmosphere": { "preset": "earth", "model": ")" + model + R"(" })";
+    const std::string atm =
+        model.empty() ? "" : R"(, "atmosphere": { "preset": "earth", "model": ")" + model + R"(" })";
     std::string json = R"({ "bodies": [
         { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 5.8e4,
           "limb_darkening_u": 0.6 },
         { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "texture": "white.hdr",
-          "albedo": 0.3)" + atm + " }";
+          "albedo": 0.3)" +
+                       atm + " }";
     if (rock)
         json += R"(,
         { "name": "rock", "kind": "moon", "ephemeris": "moon", "radius_m": 1.0, "texture": "white.hdr", "albedo": 0.5 })";
@@ -119,8 +121,9 @@ struct CpuComposer {
 
     glm::dvec3 rgb(const sh::vec3& f) const {
         const sh::sampler2D w{&m.color_weights()};
-        return glm::max(glm::dvec3(sh::xyz_to_linear_srgb(sh::atm_samples_to_xyz(f, w, float(m.color_weights().width)))),
-                        glm::dvec3(0.0)) *
+        return glm::max(
+                   glm::dvec3(sh::xyz_to_linear_srgb(sh::atm_samples_to_xyz(f, w, float(m.color_weights().width)))),
+                   glm::dvec3(0.0)) *
                scale;
     }
 
@@ -236,9 +239,8 @@ void expect_gpu_matches_cpu(const std::string& model) {
     ::testing::Test::RecordProperty("worst_relative_error", std::to_string(worst));
     EXPECT_LE(worst, 0.01) << model << ": pixel " << worst_x << "," << worst_y << " GPU "
                            << img.pixel(worst_x, worst_y)[0] << " " << img.pixel(worst_x, worst_y)[1] << " "
-                           << img.pixel(worst_x, worst_y)[2] << " CPU "
-                           << cpu.pixel(pixel_ray(ch, worst_x, worst_y)).r << " "
-                           << cpu.pixel(pixel_ray(ch, worst_x, worst_y)).g << " "
+                           << img.pixel(worst_x, worst_y)[2] << " CPU " << cpu.pixel(pixel_ray(ch, worst_x, worst_y)).r
+                           << " " << cpu.pixel(pixel_ray(ch, worst_x, worst_y)).g << " "
                            << cpu.pixel(pixel_ray(ch, worst_x, worst_y)).b;
     // A sensible picture: a blue sky above (the tables; the analytic fit reddens a low Sun's
     // sky), a lit ground below.
@@ -359,9 +361,9 @@ TEST(AtmosphereRender, FrustumCullingIsConservative) {
     };
     EXPECT_TRUE(sphere_outside_frustum(f, at(10.0, 100.0), 100.0 * std::sin(glm::radians(9.0))));
     EXPECT_FALSE(sphere_outside_frustum(f, at(10.0, 100.0), 100.0 * std::sin(glm::radians(11.0))));
-    EXPECT_FALSE(sphere_outside_frustum(f, at(-30.0, 100.0), 1.0));             // inside
-    EXPECT_TRUE(sphere_outside_frustum(f, glm::dvec3(0.0, 0.0, 100.0), 10.0));  // behind
-    EXPECT_FALSE(sphere_outside_frustum(f, glm::dvec3(0.0, 0.0, 5.0), 10.0));   // around the camera
+    EXPECT_FALSE(sphere_outside_frustum(f, at(-30.0, 100.0), 1.0));                  // inside
+    EXPECT_TRUE(sphere_outside_frustum(f, glm::dvec3(0.0, 0.0, 100.0), 10.0));       // behind
+    EXPECT_FALSE(sphere_outside_frustum(f, glm::dvec3(0.0, 0.0, 5.0), 10.0));        // around the camera
     EXPECT_TRUE(sphere_outside_frustum(f, glm::dvec3(-10.0, 100.0, -100.0), 10.0));  // above
 }
 
@@ -373,7 +375,10 @@ TEST(AtmosphereRender, HardCasesStayFinite) {
         const ChannelConfig wide = channel(48, 32, FovDeg{50, 50, 40, 40});
         SceneRenderer r(cluster, wide, scene);
         const double top = scene.bodies[kEarth].atmosphere.parameters.top_radius - kEarthRadius;
-        struct Case { std::string name; Snapshot snap; };
+        struct Case {
+            std::string name;
+            Snapshot snap;
+        };
         std::vector<Case> cases;
         // Exactly at the ground and exactly at the top, looking at the horizon, down and up.
         for (double pitch : {0.0, -60.0, 60.0}) {
@@ -390,7 +395,7 @@ TEST(AtmosphereRender, HardCasesStayFinite) {
         // 1 AU from the Earth, looking at it: a wide channel (the Earth under a pixel) and one
         // 0.01 degrees wide (the Earth fills half of it).
         Snapshot far = ground_snapshot(0.0, 0.0, 90.0, 90.0, 3);
-        far.camera_position_m = glm::dvec3(-kAu, 0.0, 0.0);  // looking along +X at the Earth
+        far.camera_position_m = glm::dvec3(-kAu, 0.0, 0.0);              // looking along +X at the Earth
         far.bodies[kSun].position_m = glm::dvec3(-kAu, 0.2 * kAu, 0.0);  // out of view, the Earth nearly full
         far.bodies[kRock].position_m = glm::dvec3(0.0, 0.0, -1.0e9);
         cases.push_back({"1 AU", far});

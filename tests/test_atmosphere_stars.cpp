@@ -43,15 +43,15 @@ SceneConfig make_scene(const std::string& tag, bool atmosphere, const std::vecto
         char line[160];
         double ra = glm::degrees(std::atan2(v.y, v.x));
         if (ra < 0.0) ra += 360.0;
-        std::snprintf(line, sizeof line, "%.9f,%.9f,1.0,0.6,S%zu\n", ra,
-                      glm::degrees(std::asin(v.z)), i);
+        std::snprintf(line, sizeof line, "%.9f,%.9f,1.0,0.6,S%zu\n", ra, glm::degrees(std::asin(v.z)), i);
         csv += line;
     }
     test::write_text(dir + "/stars.csv", csv);
     const std::string atm = atmosphere ? R"(, "atmosphere": { "preset": "earth", "model": "low" })" : "";
     test::write_text(dir + "/scene.json", R"({ "bodies": [
         { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 2.0e9, "limb_darkening_u": 0.6 },
-        { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "albedo": 0.3)" + atm + R"( } ],
+        { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "albedo": 0.3)" +
+                                              atm + R"( } ],
       "stars": { "catalog": "stars.csv", "magnitude_limit": 6.5, "psf_sigma_arcmin": 2.0, "zero_mag_flux": 2.54e-6 } })");
     return load_scene_config(dir + "/scene.json");
 }
@@ -131,7 +131,7 @@ TEST(AtmosphereStars, DrownedAtNoonVisibleAtNight) {
     const Pair night = render_pair(cluster, scene, snapshot(2.0, sun_at(120.0)));
     std::printf("noon: exposure %.3g, stars change the display by %.3f levels; night: exposure %.3g, %.1f levels\n",
                 noon.exposure, max_display_difference(noon), night.exposure, max_display_difference(night));
-    EXPECT_LT(max_display_difference(noon), 0.5);   // invisible: not even one 8-bit step
+    EXPECT_LT(max_display_difference(noon), 0.5);    // invisible: not even one 8-bit step
     EXPECT_GT(max_display_difference(night), 50.0);  // plainly visible
     EXPECT_GT(night.exposure, 1e4 * noon.exposure);
 }
@@ -177,7 +177,7 @@ TEST(AtmosphereStars, SeenThroughTheThinRimFromOrbitDimmedByTheTransmittance) {
     std::printf("rim: star light through the air %.4g, in vacuum %.4g (ratio %.3f), display difference %.1f levels\n",
                 through_air, in_vacuum, through_air / in_vacuum, max_display_difference(air));
     ASSERT_GT(in_vacuum, 0.0);
-    EXPECT_LT(through_air, 0.9 * in_vacuum);   // dimmed: the rays cross tens of km of air
-    EXPECT_GT(through_air, 0.05 * in_vacuum);  // but not hidden: the rim is thin
+    EXPECT_LT(through_air, 0.9 * in_vacuum);       // dimmed: the rays cross tens of km of air
+    EXPECT_GT(through_air, 0.05 * in_vacuum);      // but not hidden: the rim is thin
     EXPECT_GT(max_display_difference(air), 20.0);  // and visible on the display
 }

@@ -33,7 +33,8 @@ TEST(BodyOrientation, EastIsRightAndNorthIsUpFromAboveLongitudeZero) {
             p[3] = 1.0f;
         }
     const std::string tex_path = write_frame(dir, tex, FrameMetadata{}, {"png"}, 1.0).at(0);
-    nlohmann::json scene_json = nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
+    nlohmann::json scene_json =
+        nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
     scene_json["bodies"][1]["texture"] = tex_path;
     scene_json["bodies"][1].erase("atmosphere");  // the texture's own colours, not the sky's haze
     scene_json["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
@@ -55,7 +56,7 @@ TEST(BodyOrientation, EastIsRightAndNorthIsUpFromAboveLongitudeZero) {
     for (auto& b : s.bodies) b.id = static_cast<uint16_t>(&b - s.bodies.data());
     const glm::dvec3 e(-1.496e11, 0.0, 0.0);  // body frame = world frame (prime meridian along +X)
     s.bodies[earth].position_m = e;
-    s.bodies[sun].position_m = glm::dvec3(0.0);                 // the Sun lights longitude 0 (on +X)
+    s.bodies[sun].position_m = glm::dvec3(0.0);                  // the Sun lights longitude 0 (on +X)
     s.bodies[moon].position_m = e + glm::dvec3(0.0, 0.0, -4e8);  // out of view
     s.camera_position_m = e + glm::dvec3(3.0e7, 0.0, 0.0);
     // Camera looks along world -X, up along world +Z (north), so right is world +Y (longitude +90).
@@ -66,7 +67,8 @@ TEST(BodyOrientation, EastIsRightAndNorthIsUpFromAboveLongitudeZero) {
         glm::dvec3 m(0.0);
         int n = 0;
         for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x, ++n) m += glm::dvec3(img.pixel(x, y)[0], img.pixel(x, y)[1], img.pixel(x, y)[2]);
+            for (int x = x0; x < x1; ++x, ++n)
+                m += glm::dvec3(img.pixel(x, y)[0], img.pixel(x, y)[1], img.pixel(x, y)[2]);
         return m / double(n);
     };
     const glm::dvec3 right = mean(40, 48, 28, 36), left = mean(16, 24, 28, 36);

@@ -30,10 +30,10 @@ namespace {
 
 constexpr int kFrames = 300;
 
-#define SKIP_WITHOUT_NETNS()                                                             \
-    do {                                                                                 \
-        const std::string why = test::NetnsTestbed::unavailable_reason();                \
-        if (!why.empty()) GTEST_SKIP() << "needs network namespaces: " << why;           \
+#define SKIP_WITHOUT_NETNS()                                                   \
+    do {                                                                       \
+        const std::string why = test::NetnsTestbed::unavailable_reason();      \
+        if (!why.empty()) GTEST_SKIP() << "needs network namespaces: " << why; \
     } while (0)
 
 // Every channel wrote every frame in [first, end), each from the master's snapshot for it.
@@ -219,7 +219,7 @@ TEST(ClusterFaults, LinkFlapCostsResendsNotFrames) {
     expect_no_gap_no_mixed_frame(c, 0, kFrames, c.master_hashes());
     const auto m = c.stats(c.master_stats());
     EXPECT_GE(m["master"]["snapshot_resends"].get<uint64_t>(), 5u) << m.dump(2);  // 700 ms at 20 ms intervals
-    EXPECT_EQ(m["master"]["channel_drops"], 0);  // shorter than the channel timeout
+    EXPECT_EQ(m["master"]["channel_drops"], 0);                                   // shorter than the channel timeout
     expect_no_security_rejections(m["wire"], "master");
 }
 
@@ -305,7 +305,8 @@ TEST(ClusterFaults, WedgedSlaveIsTimedOutOthersGoOnItRejoinsWhenItRecovers) {
     for (const auto& e : test::read_events(c.dir + "/master.events.jsonl")) {
         if (e.value("channel", -1) != 2) continue;
         if (e.value("event", "") == "channel_dropped" && !dropped_at) dropped_at = e["frame"].get<uint64_t>();
-        if (e.value("event", "") == "channel_joined" && dropped_at && !rejoined_at) rejoined_at = e["frame"].get<uint64_t>();
+        if (e.value("event", "") == "channel_joined" && dropped_at && !rejoined_at)
+            rejoined_at = e["frame"].get<uint64_t>();
     }
     ASSERT_GT(dropped_at, 0u) << "the wedged channel was never dropped";
     ASSERT_GT(rejoined_at, dropped_at) << "it never rejoined";
@@ -366,7 +367,14 @@ TEST(ClusterSecurity, ForgedReplayedTruncatedAndFlippedPacketsAreRejectedCounted
     // Replays of authentic datagrams.
     for (int i = 0; i < kEach; ++i, ++to_slaves) send(group, recorded[i]);
     // Forged: the right cluster and session, the wrong key; to the slaves and to the master.
-    const PacketCodec forger(cfg.cluster_id, [&] { AuthKey k = key; k[5] ^= 0x20; return k; }(), master_session);
+    const PacketCodec forger(
+        cfg.cluster_id,
+        [&] {
+            AuthKey k = key;
+            k[5] ^= 0x20;
+            return k;
+        }(),
+        master_session);
     uint32_t seq = 1u << 30;
     for (int i = 0; i < kEach; ++i) {
         send(group, forger.encode(PacketType::Quit, kMasterSender, 5, {}, 1400, &seq)[0]), ++to_slaves;
@@ -409,9 +417,9 @@ TEST(ClusterSecurity, ForgedReplayedTruncatedAndFlippedPacketsAreRejectedCounted
         EXPECT_EQ(s["slave"]["frames_rendered"], kFrames) << s.dump(2);
         EXPECT_EQ(s["slave"]["malformed_snapshots"], 0) << s.dump(2);
         EXPECT_EQ(w["replayed"], kEach) << s.dump(2);
-        EXPECT_EQ(w["forged"], 2 * kEach) << s.dump(2);     // wrong key + bit flips
-        EXPECT_EQ(w["malformed"], kEach) << s.dump(2);      // truncated
-        EXPECT_EQ(w["foreign"], 2 * kEach) << s.dump(2);    // other cluster, other version
+        EXPECT_EQ(w["forged"], 2 * kEach) << s.dump(2);   // wrong key + bit flips
+        EXPECT_EQ(w["malformed"], kEach) << s.dump(2);    // truncated
+        EXPECT_EQ(w["foreign"], 2 * kEach) << s.dump(2);  // other cluster, other version
         EXPECT_EQ(w["rejected"], to_slaves) << s.dump(2);
     }
     const auto m = c.stats(c.master_stats());

@@ -14,16 +14,13 @@ using nlohmann::json;
 
 namespace {
 
-json base_config() {
-    return json::parse(test::read_text(test::source_path("configs/dome-4ch.json")));
-}
+json base_config() { return json::parse(test::read_text(test::source_path("configs/dome-4ch.json"))); }
 
 // Writes the config next to absolute paths of the repo's key, scene and show; returns its path.
 std::string write_config(const std::string& test_name, json cfg) {
     const std::string dir = test::scratch_dir("config/" + test_name);
     for (const char* k : {"key_file", "scene", "show"})
-        if (cfg.contains(k) && cfg[k].is_string())
-            cfg[k] = test::source_path("configs/" + cfg[k].get<std::string>());
+        if (cfg.contains(k) && cfg[k].is_string()) cfg[k] = test::source_path("configs/" + cfg[k].get<std::string>());
     const std::string path = dir + "/cluster.json";
     test::write_text(path, cfg.dump(2));
     return path;
@@ -45,8 +42,8 @@ void expect_error(const std::string& name, const json& cfg, const std::string& f
 }  // namespace
 
 TEST(Config, ShippedConfigsLoad) {
-    for (const char* f : {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json",
-                          "configs/descent-1ch.json"}) {
+    for (const char* f :
+         {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json", "configs/descent-1ch.json"}) {
         ClusterConfig c = load_cluster_config(test::source_path(f));
         EXPECT_FALSE(c.channels.empty()) << f;
         SceneConfig s = load_scene_config(c.scene_file);
@@ -275,5 +272,6 @@ TEST(Config, MissingTextureOrCatalogueStopsTheStartWithAClearError) {
     EXPECT_EQ(status, 2) << out;
     EXPECT_NE(out.find("stars.catalog"), std::string::npos) << out;
     EXPECT_NE(out.find("no-such-stars.csv"), std::string::npos) << out;
-    EXPECT_FALSE(std::filesystem::exists(dir + "/out/" "frame_000000.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out/"
+                                               "frame_000000.png"));
 }

@@ -54,8 +54,12 @@ struct DirectorFixture : ::testing::Test {
         show = std::make_unique<ShowScript>(ShowScript::load(cluster.show_file, scene));
         director = std::make_unique<Director>(cluster, scene, *show);
     }
-    std::string apply(const std::string& line, uint64_t next) { return director->apply(parse_control_line(line), next); }
-    glm::dvec3 body_pos(const Snapshot& s, const std::string& name) { return s.bodies[scene.find(name)->id].position_m; }
+    std::string apply(const std::string& line, uint64_t next) {
+        return director->apply(parse_control_line(line), next);
+    }
+    glm::dvec3 body_pos(const Snapshot& s, const std::string& name) {
+        return s.bodies[scene.find(name)->id].position_m;
+    }
 
     ClusterConfig cluster;
     SceneConfig scene;
@@ -173,7 +177,8 @@ TEST_F(DirectorFixture, QuietDirectorIsTheShow) {
     // Without commands or input every frame is exactly the show's (what tests recompute).
     for (uint64_t f : {0, 1, 2, 57, 300}) {
         DirectedFrame d = director->frame(f, no_device);
-        finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, f, director->frame_interval_s(), nullptr, nullptr);
+        finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, f, director->frame_interval_s(), nullptr,
+                              nullptr);
         EXPECT_EQ(d.snapshot, make_frame_snapshot(cluster, scene, *show, f)) << "frame " << f;
     }
 }
@@ -218,7 +223,7 @@ TEST_F(DirectorFixture, GotoFliesToTheBodyAndOrbitsIt) {
     director->frame(0, no_device);
     EXPECT_THROW(apply("goto Pluto", 1), ControlError);
     EXPECT_FALSE(director->live());  // a refused command changes nothing
-    apply("goto Moon 2", 1);          // 2 s = 50 frames of 0.04 s
+    apply("goto Moon 2", 1);         // 2 s = 50 frames of 0.04 s
     const double moon_r = scene.find("moon")->radius_m;
     double last_d = 1e300;
     for (uint64_t f = 1; f <= 51; ++f) {

@@ -83,8 +83,8 @@ TEST(ControlLoopback, GotoTimeRateSettingsAndQuitReachEveryChannel) {
     ASSERT_EQ(rate.rfind("ok time rate 3600", 0), 0u) << rate;
     const uint64_t f_rate = frame_in(rate);
     // A settings switch through the tool (a real client process), and a refused command.
-    const auto [tool_rc, tool_out] = test::run_shell(test::bin_path("cupola-control") + " " + sock +
-                                                     " set shadow_mode illustrative");
+    const auto [tool_rc, tool_out] =
+        test::run_shell(test::bin_path("cupola-control") + " " + sock + " set shadow_mode illustrative");
     EXPECT_EQ(tool_rc, 0) << tool_out;
     const uint64_t f_shadow = frame_in(tool_out);
     const auto [bad_rc, bad_out] = test::run_shell(test::bin_path("cupola-control") + " " + sock + " goto Vulcan");

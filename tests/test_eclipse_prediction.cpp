@@ -49,8 +49,7 @@ TEST(EclipsePrediction, TotalSolarEclipse2006March29) {
     const EclipseEvent e = next_solar_eclipse(utc_iso_to_j2000_seconds("2006-03-25T00:00:00Z"));
     EXPECT_EQ(e.type, "total");
     EXPECT_NEAR(e.peak_tt_s, nasa_peak, 60.0);
-    EXPECT_LT(surface_km(e.lat_deg, e.lon_deg, dm(23, 9.1), dm(16, 44.9)), 50.0)
-        << e.lat_deg << " " << e.lon_deg;
+    EXPECT_LT(surface_km(e.lat_deg, e.lon_deg, dm(23, 9.1), dm(16, 44.9)), 50.0) << e.lat_deg << " " << e.lon_deg;
     EXPECT_NEAR(e.gamma, 0.38433, 0.005);
     // Our lunar radius is k1 = 0.2725076 (NASA uses k2 = 0.2722810 for the umbra): +0.0009.
     EXPECT_NEAR(e.magnitude, 1.05151, 0.003);

@@ -114,8 +114,11 @@ nlohmann::json test_channel(int id, const std::string& name, double pitch_deg, i
             {"name", name},
             {"orientation", {{"pitch_deg", pitch_deg}}},
             {"unicast_address", "127.0.0.1:" + std::to_string(port)},
-            {"fov", {{"left_deg", half_fov_deg}, {"right_deg", half_fov_deg}, {"up_deg", half_fov_deg},
-                     {"down_deg", half_fov_deg}}}};
+            {"fov",
+             {{"left_deg", half_fov_deg},
+              {"right_deg", half_fov_deg},
+              {"up_deg", half_fov_deg},
+              {"down_deg", half_fov_deg}}}};
 }
 
 // A unicast loopback cluster on the physical scene with the show in `dir`, n x n channels,
@@ -128,7 +131,11 @@ nlohmann::json test_cluster(int id, const std::string& dir, int report_port, int
             {"network", {{"transport", "unicast"}, {"master_address", "127.0.0.1"}, {"report_port", report_port}}},
             {"dome", {{"fov_deg", 180}, {"tilt_deg", 0}, {"require_full_coverage", false}}},
             {"output",
-             {{"width", n}, {"height", n}, {"formats", {"exr", "png"}}, {"domemaster_size", dome_size}, {"exposure", exposure}}},
+             {{"width", n},
+              {"height", n},
+              {"formats", {"exr", "png"}},
+              {"domemaster_size", dome_size},
+              {"exposure", exposure}}},
             {"channels", channels}};
 }
 
@@ -180,10 +187,10 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
     const nlohmann::json camera = {{"anchor", "earth"},
                                    {"observer", {{"lat_deg", site.lat_deg}, {"lon_deg", site.lon_deg}, {"alt_m", 2.0}}},
                                    {"look_azimuth_deg", az_deg}};
-    const nlohmann::json show = {{"frame_interval_s", 1.0},
-                                 {"keyframes",
-                                  {keyframe(0, t_tot, camera, "off"), keyframe(1, t_90, camera, "exact"),
-                                   keyframe(2, t_tot, camera, "exact")}}};
+    const nlohmann::json show = {
+        {"frame_interval_s", 1.0},
+        {"keyframes",
+         {keyframe(0, t_tot, camera, "off"), keyframe(1, t_90, camera, "exact"), keyframe(2, t_tot, camera, "exact")}}};
     test::write_text(dir + "/show.json", show.dump(2));
     const int n = 64;
     const double sun_half_fov = 4.0;
@@ -197,9 +204,10 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
     const Image sky_off = read_frame(out + "/sky", 0), sky_90 = read_frame(out + "/sky", 1),
                 sky_tot = read_frame(out + "/sky", 2);
     const double l_off = mean_luminance(sky_off), l_90 = mean_luminance(sky_90), l_tot = mean_luminance(sky_tot);
-    std::printf("mean sky luminance: no eclipse %.4g, 90 %% %.4g (ratio %.4f, visible fraction %.4f), totality %.4g "
-                "(%.4f of 90 %%)\n",
-                l_off, l_90, l_90 / l_off, f_90, l_tot, l_tot / l_90);
+    std::printf(
+        "mean sky luminance: no eclipse %.4g, 90 %% %.4g (ratio %.4f, visible fraction %.4f), totality %.4g "
+        "(%.4f of 90 %%)\n",
+        l_off, l_90, l_90 / l_off, f_90, l_tot, l_tot / l_90);
     ASSERT_GT(l_off, 0.0);
     // At 90 % the air around the observer is lit by about the observer's visible fraction.
     EXPECT_NEAR(l_90 / l_off / f_90, 1.0, 0.3);
@@ -261,7 +269,8 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
     EXPECT_LT(corona_contrast(sun_90), 1.5);
     EXPECT_GT(corona_contrast(sun_tot), 3.0);
     // The Moon covers the disc: the centre is darker than the corona around it.
-    EXPECT_LT(luminance(sun_tot.pixel(n / 2, n / 2)), ring_luminance(sun_tot, n / 2.0, n / 2.0, 1.3 * r_sun_px, 2.5 * r_sun_px));
+    EXPECT_LT(luminance(sun_tot.pixel(n / 2, n / 2)),
+              ring_luminance(sun_tot, n / 2.0, n / 2.0, 1.3 * r_sun_px, 2.5 * r_sun_px));
 }
 
 namespace {
@@ -280,18 +289,17 @@ TEST(EclipseRender, FromSpaceTheUmbraDarkensTheEarthAndIllustrativeModeShowsTheW
     const double t = ev.peak_tt_s;
     const double half_fov = 45.0;  // the whole Earth from 4000 km; the umbra spans a few pixels
     const int n = 96;
-    const nlohmann::json camera = {
-        {"anchor", "earth"},
-        {"observer", {{"lat_deg", ev.lat_deg}, {"lon_deg", ev.lon_deg}, {"alt_m", 4.0e6}}},
-        {"look_at", "earth"}};
+    const nlohmann::json camera = {{"anchor", "earth"},
+                                   {"observer", {{"lat_deg", ev.lat_deg}, {"lon_deg", ev.lon_deg}, {"alt_m", 4.0e6}}},
+                                   {"look_at", "earth"}};
     const std::string dir = test::scratch_dir("EclipseRender_space");
     const nlohmann::json show = {{"frame_interval_s", 1.0},
                                  {"keyframes",
                                   {keyframe(0, t, camera, "off"), keyframe(1, t + 1e-3, camera, "exact"),
                                    keyframe(2, t + 2e-3, camera, "illustrative")}}};
     test::write_text(dir + "/show.json", show.dump(2));
-    const nlohmann::json cluster =
-        test_cluster(4302, dir, 47906, n, 128, 1e-4, nlohmann::json::array({test_channel(0, "earth", 0.0, 47905, half_fov)}));
+    const nlohmann::json cluster = test_cluster(
+        4302, dir, 47906, n, 128, 1e-4, nlohmann::json::array({test_channel(0, "earth", 0.0, 47905, half_fov)}));
     const std::string out = run_loopback(dir, cluster, 3);
     const Image off = read_frame(out + "/earth", 0), exact = read_frame(out + "/earth", 1),
                 ill = read_frame(out + "/earth", 2);
@@ -343,9 +351,10 @@ TEST(EclipseRender, FromSpaceTheUmbraDarkensTheEarthAndIllustrativeModeShowsTheW
                 penumbra_yellow += drop_b > 2.0 * drop_g && drop_r < 0.01;
             }
         }
-    std::printf("day-side pixels %d: predicted in the penumbra %d, tinted (illustrative) %d, darkened by > 5 %% "
-                "(exact) %d, agreement %.3f\n",
-                total, predicted_penumbra, tinted, darkened_exact, double(agree) / total);
+    std::printf(
+        "day-side pixels %d: predicted in the penumbra %d, tinted (illustrative) %d, darkened by > 5 %% "
+        "(exact) %d, agreement %.3f\n",
+        total, predicted_penumbra, tinted, darkened_exact, double(agree) / total);
     std::printf("umbra pixels %d (%d tinted red), penumbra pixels %d (%d tinted yellow)\n", umbra_px, umbra_red,
                 penumbra_px, penumbra_yellow);
     ASSERT_GT(total, 500);
@@ -365,7 +374,8 @@ TEST(EclipseRender, TheMoonTurnsDarkAndRedInATotalLunarEclipse) {
     const Snapshot probe = observer_snapshot(scene, ev.peak_tt_s, Site{0, 0, 0});
     const glm::dvec3 e = position_of(probe, scene.find("earth")->id), m = position_of(probe, scene.find("moon")->id);
     const glm::dvec3 offset = glm::normalize(m - e) * 3.0e7;  // beyond the Earth's air, towards the Moon
-    const nlohmann::json camera = {{"anchor", "earth"}, {"offset_m", {offset.x, offset.y, offset.z}}, {"look_at", "moon"}};
+    const nlohmann::json camera = {
+        {"anchor", "earth"}, {"offset_m", {offset.x, offset.y, offset.z}}, {"look_at", "moon"}};
     const std::string dir = test::scratch_dir("EclipseRender_lunar");
     const nlohmann::json show = {
         {"frame_interval_s", 1.0},

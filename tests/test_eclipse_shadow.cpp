@@ -28,7 +28,7 @@ using eclipse::visible_fraction_reference;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr float kU = 0.6f;                   // the Sun's limb darkening in the scenes
+constexpr float kU = 0.6f;                       // the Sun's limb darkening in the scenes
 constexpr double kUlp1 = 1.1920928955078125e-7;  // float spacing just above 1 (2 ulps below)
 
 // Overlap area of the unit disc and a disc of radius a at distance s, in a well-conditioned
@@ -90,7 +90,8 @@ std::vector<std::pair<float, float>> dense_grid(double lmin, double lmax, int na
     std::vector<std::pair<float, float>> g;
     for (int i = 0; i <= na; ++i) {
         const double a = std::exp2(lmin + (lmax - lmin) * i / na);
-        for (int k = 0; k <= ns; ++k) g.emplace_back(static_cast<float>(a), static_cast<float>(1.1 * (1.0 + a) * k / ns));
+        for (int k = 0; k <= ns; ++k)
+            g.emplace_back(static_cast<float>(a), static_cast<float>(1.1 * (1.0 + a) * k / ns));
         for (double c : {std::fabs(1.0 - a), a, 1.0 + a}) g.emplace_back(static_cast<float>(a), static_cast<float>(c));
     }
     return g;
@@ -116,11 +117,14 @@ struct ErrorStats {
 };
 
 const sh::Texture2DData& default_lut() {
-    static const sh::Texture2DData t = eclipse::build_eclipse_lut(kU, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
+    static const sh::Texture2DData t =
+        eclipse::build_eclipse_lut(kU, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
     return t;
 }
 sh::vec2 default_lut_size() { return sh::vec2(eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight); }
-float lut_visible(float a, float s) { return sh::eclipse_visible_lut(sh::sampler2D{&default_lut()}, default_lut_size(), a, s); }
+float lut_visible(float a, float s) {
+    return sh::eclipse_visible_lut(sh::sampler2D{&default_lut()}, default_lut_size(), a, s);
+}
 
 // The discs seen from a point in double: a and s from double vectors (the all-double path).
 struct DiscsD {
@@ -167,11 +171,11 @@ TEST(EclipseReference, ConcentricDiscsAndFullCoverAreClosedForm) {
         }
     for (double u : {0.0, 0.6, 1.0}) {
         EXPECT_EQ(visible_fraction_reference(1.0, 0.0, u), 0.0);
-        EXPECT_EQ(visible_fraction_reference(1.5, 0.3, u), 0.0);    // totality
+        EXPECT_EQ(visible_fraction_reference(1.5, 0.3, u), 0.0);     // totality
         EXPECT_EQ(visible_fraction_reference(100.0, 99.0, u), 0.0);  // second contact of a huge caster
         EXPECT_EQ(visible_fraction_reference(0.5, 1.5, u), 1.0);     // first contact
         EXPECT_EQ(visible_fraction_reference(0.5, 7.0, u), 1.0);
-        EXPECT_EQ(visible_fraction_reference(0.5, -7.0, u), 1.0);    // a negative s counts as |s|
+        EXPECT_EQ(visible_fraction_reference(0.5, -7.0, u), 1.0);  // a negative s counts as |s|
     }
 }
 
@@ -202,7 +206,8 @@ TEST(EclipseReference, AgreesWithRingsAboutTheSunsCentre) {
                 st.add(std::fabs(visible_fraction_reference(a, s, u) - rings_about_the_sun(a, s, u)), a, s);
             }
     RecordProperty("max_abs_difference", sci(st.max));
-    std::printf("reference vs rings about the Sun's centre: max %.3g (%s) over %ld points\n", st.max, st.where().c_str(), st.n);
+    std::printf("reference vs rings about the Sun's centre: max %.3g (%s) over %ld points\n", st.max,
+                st.where().c_str(), st.n);
     EXPECT_LT(st.max, 1e-11) << st.where();
 }
 
@@ -229,7 +234,8 @@ TEST(EclipseReference, ReportsItsErrorBoundAndRejectsBadInput) {
 TEST(EclipseShadow, EveryModeIsFiniteAndInRangeOnADenseGrid) {
     const auto grid = dense_grid(-10.0, 10.0, 160, 120);
     for (auto [a, s] : grid) {
-        const float v[3] = {sh::eclipse_visible_exact(a, s, kU), sh::eclipse_visible_fast(a, s, 4.0f), lut_visible(a, s)};
+        const float v[3] = {sh::eclipse_visible_exact(a, s, kU), sh::eclipse_visible_fast(a, s, 4.0f),
+                            lut_visible(a, s)};
         for (int m = 0; m < 3; ++m) {
             ASSERT_TRUE(std::isfinite(v[m])) << "mode " << m << " a=" << a << " s=" << s;
             ASSERT_GE(v[m], 0.0f) << "mode " << m << " a=" << a << " s=" << s;
@@ -291,10 +297,12 @@ TEST(EclipseShadow, LookupTableLayoutAndErrorBound) {
     }
     for (auto [a, s] : dense_grid(-6.0, 6.0, 240, 100))
         all.add(std::fabs(lut_visible(a, s) - visible_fraction_reference(a, s, kU)), a, s);
-    for (const auto& [name, st] : {std::pair<const char*, ErrorStats&>{"sun_moon", sun_moon}, {"earth_moon", earth_moon}, {"all", all}}) {
+    for (const auto& [name, st] :
+         {std::pair<const char*, ErrorStats&>{"sun_moon", sun_moon}, {"earth_moon", earth_moon}, {"all", all}}) {
         RecordProperty(std::string(name) + "_max", sci(st.max));
         RecordProperty(std::string(name) + "_mean", sci(st.mean()));
-        std::printf("lut %dx%d %s: max %.3g (%s), mean %.3g\n", t.width, t.height, name, st.max, st.where().c_str(), st.mean());
+        std::printf("lut %dx%d %s: max %.3g (%s), mean %.3g\n", t.width, t.height, name, st.max, st.where().c_str(),
+                    st.mean());
     }
     // Measured (65 x 65, u = 0.6): Sun-Moon 1.5e-3 / 8e-5, a = 3.7 4.8e-4 / 3e-5, all 1.2e-3 / 9e-5.
     EXPECT_LT(sun_moon.max, 2.5e-3) << sun_moon.where();
@@ -423,7 +431,9 @@ TEST(EclipseStability, TangentDiscs) {
         EXPECT_EQ(lut_visible(a, first), 1.0f) << a;
         EXPECT_EQ(sh::eclipse_visible_fast(a, first, 4.0f), 1.0f) << a;
         // One ulp inside: the linear penumbra has moved by that ulp over its width (2 min(1, a)).
-        EXPECT_NEAR(sh::eclipse_visible_fast(a, just_inside, 4.0f), 1.0f, 1e-6 + (first - just_inside) / (2.0f * std::min(1.0f, a))) << a;
+        EXPECT_NEAR(sh::eclipse_visible_fast(a, just_inside, 4.0f), 1.0f,
+                    1e-6 + (first - just_inside) / (2.0f * std::min(1.0f, a)))
+            << a;
         EXPECT_NEAR(lut_visible(a, just_inside), 1.0f, 1e-5f) << a;
         // Internal contact s = |1 - a| and its neighbours.
         const float inner = std::fabs(1.0f - a);
@@ -455,8 +465,7 @@ TEST(EclipseStability, CasterLargerThanTheSun) {
     EXPECT_EQ(sh::eclipse_visible_exact(100.0f, 98.5f, kU), 0.0f);
     // Earth seen from the Moon (a lunar eclipse from the Moon's side): a ~ 3.7.
     const glm::dvec3 sun(1.496e11, 0.0, 0.0), earth(0.0), moon(-3.844e8, 0.0, 0.0);
-    const sh::EclipseDiscs d =
-        sh::eclipse_discs(sh::vec3(sun - moon), 6.957e8f, sh::vec3(earth - moon), 6.371e6f);
+    const sh::EclipseDiscs d = sh::eclipse_discs(sh::vec3(sun - moon), 6.957e8f, sh::vec3(earth - moon), 6.371e6f);
     EXPECT_NEAR(d.ratio, 3.6, 0.15);
     EXPECT_EQ(d.separation, 0.0f);
     EXPECT_EQ(sh::eclipse_visible_exact(d.ratio, d.separation, kU), 0.0f);
@@ -464,9 +473,11 @@ TEST(EclipseStability, CasterLargerThanTheSun) {
 
 TEST(EclipseStability, ReceiverExactlyOnTheShadowAxis) {
     // Collinear vectors along an axis: the unit vectors are equal, s = 0 exactly.
-    const sh::EclipseDiscs d = sh::eclipse_discs(sh::vec3(0.0f, 1.496e11f, 0.0f), 6.957e8f, sh::vec3(0.0f, 3.7e8f, 0.0f), 1.7374e6f);
+    const sh::EclipseDiscs d =
+        sh::eclipse_discs(sh::vec3(0.0f, 1.496e11f, 0.0f), 6.957e8f, sh::vec3(0.0f, 3.7e8f, 0.0f), 1.7374e6f);
     EXPECT_EQ(d.separation, 0.0f);
-    EXPECT_NEAR(sh::eclipse_visible_exact(d.ratio, d.separation, kU), visible_fraction_reference(d.ratio, 0.0, kU), 3e-7);
+    EXPECT_NEAR(sh::eclipse_visible_exact(d.ratio, d.separation, kU), visible_fraction_reference(d.ratio, 0.0, kU),
+                3e-7);
     // Collinear along a skew direction: normalisation rounds, s stays ~1e-5 and the result that of s = 0.
     const sh::vec3 dir = sh::normalize(sh::vec3(0.3f, -0.5f, 0.8f));
     for (float moon_distance : {3.6e8f, 3.7e8f, 3.844e8f, 4.0e8f}) {
@@ -502,8 +513,8 @@ TEST(EclipseStability, OneAuFromTheOriginFloatAgainstDouble) {
         const double v_cupola = sh::eclipse_visible_exact(dc.ratio, dc.separation, kU);
         // Naive: positions rounded to float first, differences in float.
         const sh::vec3 sun_f(sun), moon_f(moon), receiver_f(receiver);
-        const sh::EclipseDiscs dn = sh::eclipse_discs(sun_f - receiver_f, static_cast<float>(sun_r), moon_f - receiver_f,
-                                                      static_cast<float>(moon_r));
+        const sh::EclipseDiscs dn = sh::eclipse_discs(sun_f - receiver_f, static_cast<float>(sun_r),
+                                                      moon_f - receiver_f, static_cast<float>(moon_r));
         const double v_naive = sh::eclipse_visible_exact(dn.ratio, dn.separation, kU);
         std::printf("s=%.4f: double %.9f  cupola %.9f (%.2g, s off by %.2g)  naive %.9f (%.2g, s off by %.2g)\n",
                     dd.separation, v_double, v_cupola, v_cupola - v_double, dc.separation - dd.separation, v_naive,

@@ -170,7 +170,7 @@ TEST(EglRender, StarEnergyIsTheSameInChannelsOfDifferentResolutionAndFov) {
     const glm::dvec3 dome_dir = glm::transpose(dome_tilt_rotation(cluster.dome.tilt_deg)) * cam_dir;
     const double yaw = std::atan2(dome_dir.x, -dome_dir.z) / kDeg;
     const double pitch = std::asin(dome_dir.y) / kDeg;
-    const ChannelConfig a = channel(96, 96, {yaw + 5, pitch - 4, 0}, FovDeg{45, 45, 45, 45});      // ~56'/px
+    const ChannelConfig a = channel(96, 96, {yaw + 5, pitch - 4, 0}, FovDeg{45, 45, 45, 45});     // ~56'/px
     const ChannelConfig b = channel(256, 200, {yaw - 2, pitch + 1, 20}, FovDeg{12, 18, 10, 16});  // ~7'/px
     double energy[2];
     int i = 0;

@@ -28,10 +28,11 @@ using test::wait_until;
 TEST(Fault, KilledSlaveIsDroppedOthersGoOnRestartedSlaveRejoinsAtTheCurrentFrame) {
     const std::string dir = test::scratch_dir("fault");
     const int frames = 60;
-    const std::string config = test::write_test_cluster(
-        dir, 47840, 48, 48,
-        {{"frame_rate_hz", 8}, {"output", {{"formats", {"png"}}}},
-         {"network", {{"channel_timeout_ms", 2500}, {"resend_interval_ms", 100}}}});
+    const std::string config =
+        test::write_test_cluster(dir, 47840, 48, 48,
+                                 {{"frame_rate_hz", 8},
+                                  {"output", {{"formats", {"png"}}}},
+                                  {"network", {{"channel_timeout_ms", 2500}, {"resend_interval_ms", 100}}}});
     const ClusterConfig cfg = load_cluster_config(config);
     const std::vector<std::string> headless = {"DISPLAY", "WAYLAND_DISPLAY"};
     auto start_slave = [&](const ChannelConfig& ch) {

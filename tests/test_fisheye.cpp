@@ -49,10 +49,10 @@ TEST(Fisheye, UvDirectionRoundTripOverAGrid) {
 
 TEST(Fisheye, PixelUvRoundTrip) {
     const int size = 512;
-    EXPECT_EQ(FisheyeMapping::pixel_to_uv({0, 0}, size), glm::dvec2(-1, 1));             // top-left corner
-    EXPECT_EQ(FisheyeMapping::pixel_to_uv({512, 512}, size), glm::dvec2(1, -1));         // bottom-right
-    EXPECT_EQ(FisheyeMapping::pixel_to_uv({256, 256}, size), glm::dvec2(0, 0));          // centre
-    EXPECT_EQ(FisheyeMapping::uv_to_pixel({0, -1}, size), glm::dvec2(256, 512));         // bottom-centre
+    EXPECT_EQ(FisheyeMapping::pixel_to_uv({0, 0}, size), glm::dvec2(-1, 1));      // top-left corner
+    EXPECT_EQ(FisheyeMapping::pixel_to_uv({512, 512}, size), glm::dvec2(1, -1));  // bottom-right
+    EXPECT_EQ(FisheyeMapping::pixel_to_uv({256, 256}, size), glm::dvec2(0, 0));   // centre
+    EXPECT_EQ(FisheyeMapping::uv_to_pixel({0, -1}, size), glm::dvec2(256, 512));  // bottom-centre
     for (double y = 0.25; y < size; y += 37.3)
         for (double x = 0.5; x < size; x += 41.7) {
             const glm::dvec2 uv = FisheyeMapping::pixel_to_uv({x, y}, size);
@@ -119,8 +119,8 @@ TEST(Fisheye, WiderThanAHemisphere) {
     ASSERT_TRUE(h);
     EXPECT_NEAR(h->y, -90.0 / 105.0, 1e-12);
     // The rim is 15 deg below the horizon, in front.
-    expect_vec_near(*fish.uv_to_direction({0, -1}),
-                    {0, -std::sin(glm::radians(15.0)), -std::cos(glm::radians(15.0))}, 1e-12);
+    expect_vec_near(*fish.uv_to_direction({0, -1}), {0, -std::sin(glm::radians(15.0)), -std::cos(glm::radians(15.0))},
+                    1e-12);
     // 100 deg from the apex is inside, 110 deg is beyond the fov, the nadir far outside.
     EXPECT_TRUE(fish.direction_to_uv({std::sin(glm::radians(100.0)), std::cos(glm::radians(100.0)), 0}));
     EXPECT_FALSE(fish.direction_to_uv({std::sin(glm::radians(110.0)), std::cos(glm::radians(110.0)), 0}));
@@ -132,8 +132,8 @@ TEST(Fisheye, OutsideTheCircle) {
     EXPECT_FALSE(fish.uv_to_direction({1.0001, 0}));
     EXPECT_FALSE(fish.uv_to_direction({0.8, 0.8}));  // image corner region
     EXPECT_FALSE(fish.uv_to_direction({-1, -1}));
-    EXPECT_TRUE(fish.uv_to_direction({0.7, 0.7}));    // r = 0.99
-    EXPECT_TRUE(fish.uv_to_direction({0, 1}));        // on the rim
+    EXPECT_TRUE(fish.uv_to_direction({0.7, 0.7}));  // r = 0.99
+    EXPECT_TRUE(fish.uv_to_direction({0, 1}));      // on the rim
     // Below the horizon is outside a 180 deg dome.
     EXPECT_FALSE(fish.direction_to_uv({0, -0.1, -1}));
     EXPECT_FALSE(fish.direction_to_uv({0, -1, 0}));

@@ -24,8 +24,8 @@ Image gradient_image(int w, int h) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             float* p = im.pixel(x, y);
-            p[0] = static_cast<float>(x) / (w - 1);                  // 0..1
-            p[1] = static_cast<float>(y) / (h - 1) * 0.5f;           // 0..0.5
+            p[0] = static_cast<float>(x) / (w - 1);                      // 0..1
+            p[1] = static_cast<float>(y) / (h - 1) * 0.5f;               // 0..0.5
             p[2] = 0.001f + 3.0f * static_cast<float>(x * y) / (w * h);  // beyond 1: clipped in PNG
             p[3] = (x + y) % 3 == 0 ? 1.0f : 0.5f;
         }
@@ -116,7 +116,7 @@ TEST(FrameImage, WritesPngAndExrWithMetadataAndReadsThemBack) {
                 EXPECT_GE(p[c], lo) << x << "," << y << "," << c;
                 EXPECT_LE(p[c], hi) << x << "," << y << "," << c;
             }
-            EXPECT_NEAR(e[3], s[3], 1e-3);            // alpha is not exposed
+            EXPECT_NEAR(e[3], s[3], 1e-3);  // alpha is not exposed
             EXPECT_NEAR(p[3], s[3], 0.5 / 255 + 1e-6);
         }
 
@@ -145,7 +145,7 @@ TEST(FrameImage, RowZeroIsTheTopRow) {
     ASSERT_TRUE(in);
     std::vector<unsigned char> px(4 * 3 * 4);
     ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
-    EXPECT_EQ(px[0], 255);   // top-left red
+    EXPECT_EQ(px[0], 255);        // top-left red
     EXPECT_EQ(px[4 * 4 * 2], 0);  // bottom-left black
 }
 
@@ -154,9 +154,8 @@ TEST(FrameImage, HugeValuesClampInsteadOfBecomingInfinite) {
     Image im;
     im.width = 3;
     im.height = 1;
-    im.rgba = {1e6f, 70000.0f, std::numeric_limits<float>::infinity(), 1.0f,
-               -1e6f, 65504.0f, 1e30f, 1.0f,
-               std::numeric_limits<float>::quiet_NaN(), 0.5f, 2.0f, 1.0f};
+    im.rgba = {1e6f,  70000.0f, std::numeric_limits<float>::infinity(),  1.0f, -1e6f, 65504.0f,
+               1e30f, 1.0f,     std::numeric_limits<float>::quiet_NaN(), 0.5f, 2.0f,  1.0f};
     FrameMetadata meta;
     meta.frame = 7;
     const auto paths = write_frame(dir, im, meta, {"exr", "png"}, 1.0);

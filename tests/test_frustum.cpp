@@ -185,9 +185,9 @@ TEST(Frustum, ContainsAtEdges) {
     const ChannelFrustum f(EulerDeg{40, 10, 5}, FovDeg{30, 60, 45, 20}, 320, 200);
     const double eps = 1e-6;  // pixels
     // Just inside each edge, and the centre.
-    for (glm::dvec2 p : {glm::dvec2(eps, 100), glm::dvec2(320 - eps, 100), glm::dvec2(160, eps),
-                         glm::dvec2(160, 200 - eps), glm::dvec2(eps, eps), glm::dvec2(320 - eps, 200 - eps),
-                         glm::dvec2(160, 100)})
+    for (glm::dvec2 p :
+         {glm::dvec2(eps, 100), glm::dvec2(320 - eps, 100), glm::dvec2(160, eps), glm::dvec2(160, 200 - eps),
+          glm::dvec2(eps, eps), glm::dvec2(320 - eps, 200 - eps), glm::dvec2(160, 100)})
         EXPECT_TRUE(f.contains(f.pixel_to_dome_direction(p))) << p.x << "," << p.y;
     // Just outside each edge (directions extrapolated beyond the image).
     for (glm::dvec2 p : {glm::dvec2(-1e-3, 100), glm::dvec2(320 + 1e-3, 100), glm::dvec2(160, -1e-3),
@@ -208,13 +208,13 @@ TEST(Frustum, PixelSolidAnglesSumToThePyramid) {
         FovDeg fov;
         int w, h;
     };
-    for (const Case& c : {Case{{45, 45, 45, 45}, 256, 256}, Case{{30, 60, 45, 20}, 240, 160}, Case{{10, 50, 5, 35}, 200, 256}}) {
+    for (const Case& c :
+         {Case{{45, 45, 45, 45}, 256, 256}, Case{{30, 60, 45, 20}, 240, 160}, Case{{10, 50, 5, 35}, 200, 256}}) {
         const ChannelFrustum f(EulerDeg{33, 12, -7}, c.fov, c.w, c.h);
         double sum = 0.0;
         for (int y = 0; y < c.h; ++y)
             for (int x = 0; x < c.w; ++x) sum += f.pixel_solid_angle({x + 0.5, y + 0.5});
-        const double expected =
-            rect_solid_angle(-f.tan_left(), f.tan_right(), -f.tan_down(), f.tan_up());
+        const double expected = rect_solid_angle(-f.tan_left(), f.tan_right(), -f.tan_down(), f.tan_up());
         EXPECT_NEAR(sum, expected, 1e-3 * expected) << c.fov.left_deg << "/" << c.fov.right_deg;
     }
     // The analytic formula itself: a 90x90 deg square pyramid is 2 pi / 3 sr (a cube face), and the

@@ -125,8 +125,8 @@ TEST(GlarePsf, HaloRingsIntegrateToOneRedOutside) {
         double radius_deg, width_deg;
     };
     // The default, a ring at the pole (a Gaussian spot), one barely off it, broad and wide ones.
-    for (Ring r : {Ring{3.5, 0.35}, Ring{0.0, 0.35}, Ring{0.35, 0.35}, Ring{1.0, 0.6}, Ring{17.0, 5.7},
-                   Ring{57.0, 3.0}}) {
+    for (Ring r :
+         {Ring{3.5, 0.35}, Ring{0.0, 0.35}, Ring{0.35, 0.35}, Ring{1.0, 0.6}, Ring{17.0, 5.7}, Ring{57.0, 3.0}}) {
         sh::GlareParams p = default_params();
         p.halo_radius_rad = static_cast<float>(r.radius_deg * kDeg);
         p.halo_width_rad = static_cast<float>(r.width_deg * kDeg);
@@ -229,8 +229,8 @@ TEST(GlarePsf, EnergyIsTheScatteredTermsAndIndependentOfPhase) {
     p.strength = 1.7f;
     const double extent = p.extent_rad;
     const double expected =
-        p.strength * integrate_sphere([&](double t) { return (spencer_flare(t) + spencer_bloom(t)) * fade(t, extent); },
-                                      extent);
+        p.strength *
+        integrate_sphere([&](double t) { return (spencer_flare(t) + spencer_bloom(t)) * fade(t, extent); }, extent);
     // About 0.478 + 0.95 x 0.138 per unit strength, as the header says.
     EXPECT_NEAR(expected / p.strength, 0.478 + 0.95 * 0.138, 0.01);
     const glm::dvec3 e0 = psf_energy(p);

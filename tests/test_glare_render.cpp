@@ -52,8 +52,8 @@ std::string write_scene(const std::string& dir, const std::string& visibility) {
     return path;
 }
 
-nlohmann::json channel(int id, const std::string& name, double yaw, double pitch, double l, double r, double d, double u,
-                       int w, int h, int port) {
+nlohmann::json channel(int id, const std::string& name, double yaw, double pitch, double l, double r, double d,
+                       double u, int w, int h, int port) {
     return {{"id", id},
             {"name", name},
             {"orientation", {{"yaw_deg", yaw}, {"pitch_deg", pitch}}},
@@ -76,8 +76,8 @@ nlohmann::json cluster(int id, const std::string& scene, const std::string& show
 
 // Looking at the Sun from near the Earth, the Sun raised to 30 degrees above the front horizon.
 std::string write_sun_show(const std::string& dir, const nlohmann::json& camera_override = nlohmann::json::object()) {
-    nlohmann::json camera = {{"anchor", "earth"}, {"offset_m", {9.2e6, -1.77e7, 4.6e5}}, {"look_at", "sun"},
-                             {"target_elevation_deg", 30}};
+    nlohmann::json camera = {
+        {"anchor", "earth"}, {"offset_m", {9.2e6, -1.77e7, 4.6e5}}, {"look_at", "sun"}, {"target_elevation_deg", 30}};
     camera.merge_patch(camera_override);
     const nlohmann::json show = {{"frame_interval_s", 0.04},
                                  {"keyframes", {{{"at_s", 0}, {"time_utc", kTime}, {"camera", camera}}}}};
@@ -108,7 +108,9 @@ glm::dvec3 body_position(const Snapshot& s, uint16_t id) {
 }
 
 // World -> dome frame for a snapshot (tilt 0).
-glm::dmat3 dome_from_world(const Snapshot& s) { return glm::transpose(glm::dmat3(glm::mat3_cast(s.camera_orientation))); }
+glm::dmat3 dome_from_world(const Snapshot& s) {
+    return glm::transpose(glm::dmat3(glm::mat3_cast(s.camera_orientation)));
+}
 
 // Per domemaster pixel: its dome direction (nothing outside the image circle).
 struct DomeGrid {
@@ -118,11 +120,14 @@ struct DomeGrid {
         const FisheyeMapping fish(180.0);
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x)
-                dirs[static_cast<size_t>(y) * n + x] = fish.uv_to_direction(FisheyeMapping::pixel_to_uv({x + 0.5, y + 0.5}, n));
+                dirs[static_cast<size_t>(y) * n + x] =
+                    fish.uv_to_direction(FisheyeMapping::pixel_to_uv({x + 0.5, y + 0.5}, n));
     }
 };
 
-double angle(const glm::dvec3& a, const glm::dvec3& b) { return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b))); }
+double angle(const glm::dvec3& a, const glm::dvec3& b) {
+    return 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(a - b)));
+}
 
 // Glare energy of a domemaster: luminance times pixel solid angle summed over covered pixels at
 // least `min_deg` from the Sun (the disc itself is not glare), where `mask` (if given) is covered
@@ -223,8 +228,10 @@ SeamResult seam_run(const SeamLayout& layout, const std::string& visibility, int
     const double es = glare_energy(split, grid, sun_dome, 1.0, &wide);
     EXPECT_GT(ew, 0.0);
     SeamResult r{std::abs(es - ew) / ew, worst_pixel_difference(out, wide_out, layout.placement)};
-    std::printf("%s, %s visibility: glare energy %.4g vs wide %.4g (error %.3f %%), worst pixel against the wide channel %.3f %%\n",
-                layout.name.c_str(), visibility.c_str(), es, ew, 100.0 * r.energy_error, 100.0 * r.seam_step);
+    std::printf(
+        "%s, %s visibility: glare energy %.4g vs wide %.4g (error %.3f %%), worst pixel against the wide channel %.3f "
+        "%%\n",
+        layout.name.c_str(), visibility.c_str(), es, ew, 100.0 * r.energy_error, 100.0 * r.seam_step);
     return r;
 }
 
@@ -270,11 +277,12 @@ TEST(GlareRender, SunHalfBehindTheMoonMeasuredFractionMatchesTheAnalyticAndTheGl
         const glm::dvec3 offset = -40.0 * rm * u + rm * w;
         write_sun_show(dir, {{"anchor", "moon"}, {"offset_m", {offset.x, offset.y, offset.z}}});
     }
-    const std::string out = test::run_loopback(dir, cluster(5102, scene_file, dir + "/show.json", 48017, 512, edge_layout(48015).channels), 3);
+    const std::string out = test::run_loopback(
+        dir, cluster(5102, scene_file, dir + "/show.json", 48017, 512, edge_layout(48015).channels), 3);
     const Snapshot snap = show_snapshot(dir + "/cluster.json", 1);
     const glm::dvec3 cam = snap.camera_position_m;
-    const GlareVisibility analytic =
-        analytic_visibility(cam, body_position(snap, sun), scene.bodies[sun].radius_m, snapshot_occluders(snap, scene, sun));
+    const GlareVisibility analytic = analytic_visibility(cam, body_position(snap, sun), scene.bodies[sun].radius_m,
+                                                         snapshot_occluders(snap, scene, sun));
     ASSERT_GT(analytic.visible_fraction, 0.3);
     ASSERT_LT(analytic.visible_fraction, 0.7);
 
@@ -289,11 +297,13 @@ TEST(GlareRender, SunHalfBehindTheMoonMeasuredFractionMatchesTheAnalyticAndTheGl
                     analytic.visible_fraction, 100.0 * (measured / analytic.visible_fraction - 1.0));
         EXPECT_NEAR(measured, analytic.visible_fraction, 0.02 * analytic.visible_fraction);
         // The shared offset points away from the Moon, like the analytic one.
-        const glm::dvec3 offset(g.at("offset")[0].get<double>(), g.at("offset")[1].get<double>(), g.at("offset")[2].get<double>());
+        const glm::dvec3 offset(g.at("offset")[0].get<double>(), g.at("offset")[1].get<double>(),
+                                g.at("offset")[2].get<double>());
         const glm::dvec3 to_moon = glm::normalize(body_position(snap, moon) - cam);
         EXPECT_LT(glm::dot(offset, to_moon), 0.0);
         EXPECT_GT(glm::dot(glm::normalize(offset), glm::normalize(analytic.centroid_offset)), 0.95);
-        EXPECT_NEAR(glm::length(offset), glm::length(analytic.centroid_offset), 0.25 * glm::length(analytic.centroid_offset));
+        EXPECT_NEAR(glm::length(offset), glm::length(analytic.centroid_offset),
+                    0.25 * glm::length(analytic.centroid_offset));
     }
 
     // In the image: the glare's luminance centroid (0.7 to 4 degrees from the Sun's centre, so
@@ -344,9 +354,12 @@ TEST(GlareRender, SunSweepingAcrossTheDomeSeamsGivesSmoothGlareWithOneFrameLag) 
         const glm::dvec3 l = look(-60.0 + 30.0 * i);
         keys.push_back({{"at_s", i * frames * 0.04 / 4.0},
                         {"time_utc", kTime},
-                        {"camera", {{"anchor", "earth"}, {"offset_m", {9.2e6, -1.77e7, 4.6e5}},
-                                    {"look_direction", {l.x, l.y, l.z}}, {"up", {up.x, up.y, up.z}},
-                                    {"target_elevation_deg", 35}}}});
+                        {"camera",
+                         {{"anchor", "earth"},
+                          {"offset_m", {9.2e6, -1.77e7, 4.6e5}},
+                          {"look_direction", {l.x, l.y, l.z}},
+                          {"up", {up.x, up.y, up.z}},
+                          {"target_elevation_deg", 35}}}});
     }
     test::write_text(dir + "/show.json", nlohmann::json({{"frame_interval_s", 0.04}, {"keyframes", keys}}).dump(2));
     nlohmann::json c = nlohmann::json::parse(test::read_text(test::source_path("configs/dome-4ch.json")));
@@ -358,7 +371,8 @@ TEST(GlareRender, SunSweepingAcrossTheDomeSeamsGivesSmoothGlareWithOneFrameLag) 
         ch["height"] = 128;
         channels.push_back(ch);
     }
-    const std::string out = test::run_loopback(dir, cluster(5103, scene_file, dir + "/show.json", 48020, 384, channels), frames);
+    const std::string out =
+        test::run_loopback(dir, cluster(5103, scene_file, dir + "/show.json", 48020, 384, channels), frames);
 
     // Latency: every frame after the first draws from the previous frame's measurement.
     const auto events = test::read_events(out + "/logs/events.jsonl");
@@ -427,8 +441,8 @@ TEST(GlareRender, KilledSlaveLeavesTheOthersAGlareThatChangesSmoothly) {
                                        dir + "/" + name, "--idle-timeout", "60"},
                                       dir + "/" + name + ".log", headless));
     const std::string events_file = dir + "/events.jsonl";
-    ChildProcess master({test::bin_path("cupola-master"), "--config", config, "--frames", std::to_string(frames), "--events",
-                         events_file},
+    ChildProcess master({test::bin_path("cupola-master"), "--config", config, "--frames", std::to_string(frames),
+                         "--events", events_file},
                         dir + "/master.log", headless);
     // Kill "right" (it holds half the Sun) once it has rendered frame 8.
     ASSERT_TRUE(test::wait_until([&] { return fs::exists(dir + "/right/" + frame_file_name(8, "exr")); }, 120s))

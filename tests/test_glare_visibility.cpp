@@ -297,7 +297,9 @@ TEST(GlareVisibility, GroundObserverSunOnTheHorizon) {
     const glm::dvec3 camera = earth + (kEarthRadius + height) * up;
     const double dip = std::acos(kEarthRadius / (kEarthRadius + height));
     const std::vector<SphereOccluder> ground{{earth, kEarthRadius}};
-    const auto sun_at = [&](double elevation) { return camera + kAu * (std::cos(elevation) * e1 + std::sin(elevation) * up); };
+    const auto sun_at = [&](double elevation) {
+        return camera + kAu * (std::cos(elevation) * e1 + std::sin(elevation) * up);
+    };
 
     const glm::dvec3 sun = sun_at(-dip);
     const GlareVisibility v = analytic_visibility(camera, sun, kSunRadius, ground);
@@ -400,8 +402,11 @@ TEST(GlareVisibility, SnapshotOccludersSkipStarsAndTheSource) {
 
     Snapshot snap;
     snap.camera_position_m = {kAu, 0.0, 1.0e7};
-    snap.bodies = {{0, {0.0, 0.0, 0.0}}, {1, {kAu, 0.0, 0.0}}, {2, {kAu, kMoonDistance, 0.0}},
-                   {3, {-1e12, 0.0, 0.0}}, {4, {0.0, 2.2e11, 0.0}}};
+    snap.bodies = {{0, {0.0, 0.0, 0.0}},
+                   {1, {kAu, 0.0, 0.0}},
+                   {2, {kAu, kMoonDistance, 0.0}},
+                   {3, {-1e12, 0.0, 0.0}},
+                   {4, {0.0, 2.2e11, 0.0}}};
 
     const std::vector<SphereOccluder> from_sun = snapshot_occluders(snap, scene, 0);
     ASSERT_EQ(from_sun.size(), 3u);
@@ -420,6 +425,7 @@ TEST(GlareVisibility, SnapshotOccludersSkipStarsAndTheSource) {
 
     // Used directly: from 10 000 km above the Earth's pole (as seen here) the Earth and the Moon
     // lie 90 degrees from the Sun, so it shows whole.
-    const GlareVisibility v = analytic_visibility(snap.camera_position_m, snap.bodies[0].position_m, kSunRadius, from_sun);
+    const GlareVisibility v =
+        analytic_visibility(snap.camera_position_m, snap.bodies[0].position_m, kSunRadius, from_sun);
     EXPECT_EQ(v.visible_fraction, 1.0);
 }

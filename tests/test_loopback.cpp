@@ -179,8 +179,10 @@ void check_overlap_star_lands_on_one_pixel() {
                 EXPECT_LE(glm::length(*ca - *cb), 1.0)
                     << star.name << " V=" << star.v_mag << " channels " << cfg.channels[a].name << "/"
                     << cfg.channels[b].name << ": " << ca->x << "," << ca->y << " vs " << cb->x << "," << cb->y;
-                EXPECT_LE(glm::length(*ca - expected), 1.0) << star.name << " " << (ca->x - expected.x) << "," << (ca->y - expected.y);
-                EXPECT_LE(glm::length(*cb - expected), 1.0) << star.name << " " << (cb->x - expected.x) << "," << (cb->y - expected.y);
+                EXPECT_LE(glm::length(*ca - expected), 1.0)
+                    << star.name << " " << (ca->x - expected.x) << "," << (ca->y - expected.y);
+                EXPECT_LE(glm::length(*cb - expected), 1.0)
+                    << star.name << " " << (cb->x - expected.x) << "," << (cb->y - expected.y);
                 ++checked;
             }
     }

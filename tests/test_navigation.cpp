@@ -69,7 +69,9 @@ NavSample sample(const NavAxes& a) {
 }
 
 // A point `alt` above a body's surface along the world direction `dir`.
-glm::dvec3 above(const NavBody& b, glm::dvec3 dir, double alt) { return b.position_m + glm::normalize(dir) * (b.radius_m + alt); }
+glm::dvec3 above(const NavBody& b, glm::dvec3 dir, double alt) {
+    return b.position_m + glm::normalize(dir) * (b.radius_m + alt);
+}
 
 }  // namespace
 
@@ -420,7 +422,7 @@ TEST(NavSurfaceWalk, StaysAtEyeHeightAcrossThePoleWithTheZenithUp) {
     const glm::dvec3 v = glm::conjugate(earth.orientation) * model.offset_m(bodies);
     const double lon_now = glm::degrees(std::atan2(v.y, v.x));
     EXPECT_NEAR(std::abs(std::remainder(lon_now - 30.0, 360.0)), 180.0, 1e-6);  // the far side
-    EXPECT_LT(latitude_deg(earth, model.offset_m(bodies)), 80.0);  // and down the other side
+    EXPECT_LT(latitude_deg(earth, model.offset_m(bodies)), 80.0);               // and down the other side
 
     // Down to eye height again; walk about with turns and sidesteps.
     for (int i = 0; i < 2000; ++i) model.step({0, -1.0, 0, 0, 0, 0}, 0.05, bodies);

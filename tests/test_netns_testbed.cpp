@@ -30,10 +30,10 @@ namespace {
 
 using namespace std::chrono_literals;
 
-#define SKIP_IF_NO_NETNS()                                                 \
-    do {                                                                   \
-        const std::string why = NetnsTestbed::unavailable_reason();        \
-        if (!why.empty()) GTEST_SKIP() << why;                             \
+#define SKIP_IF_NO_NETNS()                                          \
+    do {                                                            \
+        const std::string why = NetnsTestbed::unavailable_reason(); \
+        if (!why.empty()) GTEST_SKIP() << why;                      \
     } while (0)
 
 // A UDP socket made inside one host of the test bed, closed on destruction.

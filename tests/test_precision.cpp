@@ -52,7 +52,7 @@ TEST(Precision, EarthFromTheMoonDoesNotDependOnDistanceFromTheOrigin) {
     for (auto& b : s.bodies) b.id = static_cast<uint16_t>(&b - s.bodies.data());
     const glm::dvec3 earth_pos(0.0, 0.0, 0.0);
     s.bodies[earth].position_m = earth_pos;
-    s.bodies[sun].position_m = glm::dvec3(0.3e11, -1.496e11, 0.0);  // behind the camera: a nearly full Earth
+    s.bodies[sun].position_m = glm::dvec3(0.3e11, -1.496e11, 0.0);       // behind the camera: a nearly full Earth
     s.bodies[moon].position_m = glm::dvec3(0.0, -3.844e8 - 5.0e6, 0.0);  // behind the camera
     s.camera_position_m = glm::dvec3(0.0, -3.844e8, 0.0);
     // Camera -Z towards +Y (the Earth), +Y up along world +Z.
@@ -62,7 +62,9 @@ TEST(Precision, EarthFromTheMoonDoesNotDependOnDistanceFromTheOrigin) {
     // The Earth is in the picture: a lit disc filling most of the channel.
     int lit = 0;
     for (int y = 0; y < near_origin.height; ++y)
-        for (int x = 0; x < near_origin.width; ++x) lit += std::max({near_origin.pixel(x, y)[0], near_origin.pixel(x, y)[1], near_origin.pixel(x, y)[2]}) > 1e-5f;
+        for (int x = 0; x < near_origin.width; ++x)
+            lit +=
+                std::max({near_origin.pixel(x, y)[0], near_origin.pixel(x, y)[1], near_origin.pixel(x, y)[2]}) > 1e-5f;
     EXPECT_GT(lit, near_origin.width * near_origin.height / 4);
 
     // The same scene moved 1 AU (and 40 AU) away from the origin, with odd metre fractions.

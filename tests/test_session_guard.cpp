@@ -17,10 +17,10 @@ TEST(SequenceWindow, FreshReorderedDuplicateAndReplay) {
     SequenceWindow w(500 * kMs);
     EXPECT_EQ(w.check(10, 1 * kMs), V::Fresh);
     EXPECT_EQ(w.check(12, 2 * kMs), V::Fresh);
-    EXPECT_EQ(w.check(11, 3 * kMs), V::Reordered);     // late but never seen
-    EXPECT_EQ(w.check(11, 4 * kMs), V::Duplicate);     // the network sent it twice
-    EXPECT_EQ(w.check(12, 900 * kMs), V::Replayed);    // the same datagram long after
-    EXPECT_EQ(w.check(9, 901 * kMs), V::Reordered);    // older than the first, still in the window
+    EXPECT_EQ(w.check(11, 3 * kMs), V::Reordered);   // late but never seen
+    EXPECT_EQ(w.check(11, 4 * kMs), V::Duplicate);   // the network sent it twice
+    EXPECT_EQ(w.check(12, 900 * kMs), V::Replayed);  // the same datagram long after
+    EXPECT_EQ(w.check(9, 901 * kMs), V::Reordered);  // older than the first, still in the window
     EXPECT_EQ(w.check(13, 902 * kMs), V::Fresh);
 }
 

@@ -10,8 +10,8 @@
 namespace sh = cupola::shading;
 
 TEST(SharedShading, LimbDarkeningEdgeValues) {
-    EXPECT_FLOAT_EQ(sh::limb_darkening(1.0f, 0.6f), 1.0f);   // disc centre
-    EXPECT_FLOAT_EQ(sh::limb_darkening(0.0f, 0.6f), 0.4f);   // limb: 1 - u
+    EXPECT_FLOAT_EQ(sh::limb_darkening(1.0f, 0.6f), 1.0f);  // disc centre
+    EXPECT_FLOAT_EQ(sh::limb_darkening(0.0f, 0.6f), 0.4f);  // limb: 1 - u
     EXPECT_FLOAT_EQ(sh::limb_darkening(0.5f, 0.6f), 0.7f);
     EXPECT_FLOAT_EQ(sh::limb_darkening(0.3f, 0.0f), 1.0f);   // no darkening
     EXPECT_FLOAT_EQ(sh::limb_darkening(-0.2f, 0.6f), 0.4f);  // clamped outside the disc
@@ -129,6 +129,6 @@ TEST(SharedShading, StarBoxFractionsSumToOneAndMatchTheIntegral) {
     const sh::vec2 on = sh::star_tangent_sigma(sh::vec2(0.0f, 0.0f), sigma);
     EXPECT_NEAR(on.x, sigma, 1e-9);
     const sh::vec2 off = sh::star_tangent_sigma(sh::vec2(1.0f, 0.0f), sigma);  // 45 degrees off axis
-    EXPECT_NEAR(off.x, sigma * 2.0f, 1e-6);                 // 1 / cos^2(45)
-    EXPECT_NEAR(off.y, sigma * std::sqrt(2.0f), 1e-6);      // 1 / cos(45)
+    EXPECT_NEAR(off.x, sigma * 2.0f, 1e-6);                                    // 1 / cos^2(45)
+    EXPECT_NEAR(off.y, sigma * std::sqrt(2.0f), 1e-6);                         // 1 / cos(45)
 }

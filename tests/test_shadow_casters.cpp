@@ -30,7 +30,8 @@ nlohmann::json saturn_like_scene(bool siblings) {
               body("enceladus", "moon", "moon", 2.5e5)}},
             {"shadows",
              {{"groups",
-               {{{"parent", "saturn"}, {"children", {"titan", "dione", "enceladus"}},
+               {{{"parent", "saturn"},
+                 {"children", {"titan", "dione", "enceladus"}},
                  {"siblings_shadow_each_other", siblings}}}}}},
             {"stars", {{"catalog", test::source_path("data/stars/bright_stars.csv")}}}};
 }
@@ -60,7 +61,7 @@ TEST(ShadowGroups, ParentAndChildrenShadowEachOtherSiblingsOnlyWhenAllowed) {
     const uint16_t saturn = s.find("saturn")->id, titan = s.find("titan")->id, dione = s.find("dione")->id,
                    enceladus = s.find("enceladus")->id;
     EXPECT_EQ(c[saturn], (std::vector<uint16_t>{titan, dione, enceladus}));  // three shadows on the parent
-    EXPECT_EQ(c[titan], std::vector<uint16_t>{saturn});                       // one on each child
+    EXPECT_EQ(c[titan], std::vector<uint16_t>{saturn});                      // one on each child
     EXPECT_EQ(c[dione], std::vector<uint16_t>{saturn});
     EXPECT_TRUE(c[s.find("sun")->id].empty());
 
@@ -81,7 +82,8 @@ TEST(PenumbraReaches, AgreesWithSampledVisibleFraction) {
     for (int trial = 0; trial < 300; ++trial) {
         const glm::dvec3 caster(1.496e11, 0.0, 0.0);
         // Receivers around the caster's shadow, 0.3 to 1.5 million km behind it, offsets up to 30 000 km.
-        const glm::dvec3 receiver = caster + glm::dvec3(3.0e8 + 1.2e9 * (0.5 + 0.5 * u(rng)), 3.0e7 * u(rng), 3.0e7 * u(rng));
+        const glm::dvec3 receiver =
+            caster + glm::dvec3(3.0e8 + 1.2e9 * (0.5 + 0.5 * u(rng)), 3.0e7 * u(rng), 3.0e7 * u(rng));
         const bool test = penumbra_reaches(sun, rs, caster, rc, receiver, rr);
         // Brute force: does any point of the receiver's sphere see the Sun partly hidden?
         bool shadowed = false;
@@ -157,15 +159,21 @@ TEST(ShadowConfig, ErrorsNameTheField) {
 TEST(ShowScript, ObserverOnTheGroundAndShadowModeSwitches) {
     const SceneConfig s = load_scene_config(test::source_path("configs/scenes/earth-physical.json"));
     const std::string dir = test::scratch_dir("ShadowCasters_show");
-    const nlohmann::json show = {
-        {"frame_interval_s", 1.0},
-        {"keyframes",
-         {{{"at_s", 0}, {"time_utc", "2006-03-29T10:11:00Z"},
-           {"camera", {{"anchor", "earth"}, {"observer", {{"lat_deg", 23.15}, {"lon_deg", 16.73}, {"alt_m", 100}}},
-                       {"look_azimuth_deg", 90}}}},
-          {{"at_s", 1}, {"time_utc", "2006-03-29T10:11:01Z"}, {"shadow_mode", "illustrative"},
-           {"camera", {{"anchor", "earth"}, {"observer", {{"lat_deg", 23.15}, {"lon_deg", 16.73}, {"alt_m", 100}}},
-                       {"look_at", "sun"}}}}}}};
+    const nlohmann::json show = {{"frame_interval_s", 1.0},
+                                 {"keyframes",
+                                  {{{"at_s", 0},
+                                    {"time_utc", "2006-03-29T10:11:00Z"},
+                                    {"camera",
+                                     {{"anchor", "earth"},
+                                      {"observer", {{"lat_deg", 23.15}, {"lon_deg", 16.73}, {"alt_m", 100}}},
+                                      {"look_azimuth_deg", 90}}}},
+                                   {{"at_s", 1},
+                                    {"time_utc", "2006-03-29T10:11:01Z"},
+                                    {"shadow_mode", "illustrative"},
+                                    {"camera",
+                                     {{"anchor", "earth"},
+                                      {"observer", {{"lat_deg", 23.15}, {"lon_deg", 16.73}, {"alt_m", 100}}},
+                                      {"look_at", "sun"}}}}}}};
     test::write_text(dir + "/show.json", show.dump(2));
     const ShowScript script = ShowScript::load(dir + "/show.json", s);
     const Snapshot a = script.evaluate(0.0, s), b = script.evaluate(1.0, s);

@@ -103,7 +103,8 @@ TEST(ShowScript, ErrorsNameTheField) {
     } catch (const ConfigError& e) {
         EXPECT_EQ(e.field(), "keyframes[1].at_s");
     }
-    test::write_text(dir + "/time.json", R"({"keyframes":[{"at_s":0,"time_utc":"noon","camera":{"look_at":"earth"}}]})");
+    test::write_text(dir + "/time.json",
+                     R"({"keyframes":[{"at_s":0,"time_utc":"noon","camera":{"look_at":"earth"}}]})");
     try {
         ShowScript::load(dir + "/time.json", scene);
         FAIL();
@@ -118,12 +119,12 @@ namespace {
 ShowScript easing_show(const SceneConfig& scene, const std::string& dir, const std::string& camera_easing,
                        const std::string& time_easing, const std::string& events = "") {
     test::write_text(dir + "/show.json", R"({"frame_interval_s": 0.5, "keyframes":[
-        {"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":")" + camera_easing + R"(","time_easing":")" +
-                                               time_easing + R"(",
+        {"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":")" +
+                                             camera_easing + R"(","time_easing":")" + time_easing + R"(",
          "camera":{"anchor":"earth","offset_m":[2e7,0,0],"look_at":"earth"}},
         {"at_s":10,"time_utc":"2024-04-08T13:00:00Z",
          "camera":{"anchor":"earth","offset_m":[2.1e7,0,0],"look_at":"earth"}}])" +
-                                               (events.empty() ? "" : ", \"events\": " + events) + "}");
+                                             (events.empty() ? "" : ", \"events\": " + events) + "}");
     return ShowScript::load(dir + "/show.json", scene);
 }
 double camera_x_from_earth(const Snapshot& s, const SceneConfig& scene) {
@@ -177,14 +178,14 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     ASSERT_TRUE(show.settings_at(4.0).exposure);
     EXPECT_FLOAT_EQ(*show.settings_at(5.0).exposure, 2.5f);
     EXPECT_FLOAT_EQ(*show.settings_at(5.0).star_magnitude_limit, 4.0f);
-    EXPECT_FALSE(show.settings_at(6.0).exposure);                    // back to the cluster's exposure
+    EXPECT_FALSE(show.settings_at(6.0).exposure);                        // back to the cluster's exposure
     EXPECT_FLOAT_EQ(*show.settings_at(6.0).star_magnitude_limit, 4.0f);  // kept
     EXPECT_EQ(shadow_mode_of(show.evaluate(7.0, scene).settings.flags), ShadowMode::Off);
     EXPECT_DOUBLE_EQ(show.duration_s(), 10.0);
 
     // The master turns them into the snapshot every channel receives.
     ClusterConfig cfg = load_cluster_config(test::source_path("configs/dome-4ch.json"));
-    cfg.frame_rate_hz = 0;  // frame N = show time N x 0.5 s
+    cfg.frame_rate_hz = 0;                                         // frame N = show time N x 0.5 s
     const Snapshot f9 = make_frame_snapshot(cfg, scene, show, 9);  // 4.5 s
     EXPECT_FLOAT_EQ(f9.settings.exposure, 2.5f);
     EXPECT_FLOAT_EQ(f9.settings.star_magnitude_limit, 4.0f);
@@ -207,12 +208,16 @@ TEST(ShowScript, BadEasingsAndEventsNameTheField) {
         return std::string("(accepted)");
     };
     const std::string key = R"({"at_s":0,"time_utc":"2024-04-08T12:00:00Z","camera":{"look_at":"earth"}})";
-    EXPECT_EQ(field_of(R"({"keyframes":[{"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":"bouncy","camera":{"look_at":"earth"}}]})"),
-              "keyframes[0].easing");
+    EXPECT_EQ(
+        field_of(
+            R"({"keyframes":[{"at_s":0,"time_utc":"2024-04-08T12:00:00Z","easing":"bouncy","camera":{"look_at":"earth"}}]})"),
+        "keyframes[0].easing");
     EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"shadow_mode":"sharp"}]})"),
               "events[0].shadow_mode");
     EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":-1}]})"), "events[0].exposure");
-    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":"bright"}]})"), "events[0].exposure");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":"bright"}]})"),
+              "events[0].exposure");
     EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1}]})"), "events[0].at_s");
-    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":1,"glow":1}]})"), "events[0].glow");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":1,"glow":1}]})"),
+              "events[0].glow");
 }

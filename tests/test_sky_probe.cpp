@@ -26,9 +26,11 @@ const std::string kSky = test::bin_path("cupola-sky");
 }  // namespace
 
 TEST(SkyProbe, AnswersOneJsonObjectPerQueryLine) {
-    const auto [status, out] = run("printf '# Meeus 47.a, 1992 Apr 12.0 TD\\nposition moon 1992-04-11T23:58:59Z\\n\\n"
-                                   "eclipse 2006-03-29T10:11:18Z\\nnext-solar 2006-03-25T00:00:00Z\\n"
-                                   "next-lunar 2022-11-04T00:00:00Z\\n' | " + kSky);
+    const auto [status, out] =
+        run("printf '# Meeus 47.a, 1992 Apr 12.0 TD\\nposition moon 1992-04-11T23:58:59Z\\n\\n"
+            "eclipse 2006-03-29T10:11:18Z\\nnext-solar 2006-03-25T00:00:00Z\\n"
+            "next-lunar 2022-11-04T00:00:00Z\\n' | " +
+            kSky);
     ASSERT_EQ(status, 0) << out;
     const auto j = json_lines(out);
     ASSERT_EQ(j.size(), 4u) << out;
@@ -54,8 +56,10 @@ TEST(SkyProbe, AnswersOneJsonObjectPerQueryLine) {
 }
 
 TEST(SkyProbe, BadLinesAndBadArgumentsAreNamed) {
-    const auto [status, out] = run("printf 'position pluto 2024-01-01T00:00:00Z\\neclipse noon\\nwobble\\n"
-                                   "position sun\\nposition sun 2024-04-08T18:17:00Z\\n' | " + kSky);
+    const auto [status, out] =
+        run("printf 'position pluto 2024-01-01T00:00:00Z\\neclipse noon\\nwobble\\n"
+            "position sun\\nposition sun 2024-04-08T18:17:00Z\\n' | " +
+            kSky);
     EXPECT_EQ(status, 2);
     const auto j = json_lines(out);
     ASSERT_EQ(j.size(), 5u) << out;

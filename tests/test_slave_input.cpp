@@ -26,9 +26,12 @@ TEST(SlaveInput, BadPacketsAreCountedAndTheSlaveGoesOn) {
         dir, 47860, 32, 32,
         {{"network", {{"transport", "unicast"}}},
          {"dome", {{"require_full_coverage", false}}},
-         {"channels", {{{"id", 0}, {"name", "solo"}, {"unicast_address", "127.0.0.1:47865"},
-                        {"orientation", {{"pitch_deg", 90}}},
-                        {"fov", {{"left_deg", 40}, {"right_deg", 40}, {"up_deg", 40}, {"down_deg", 40}}}}}}});
+         {"channels",
+          {{{"id", 0},
+            {"name", "solo"},
+            {"unicast_address", "127.0.0.1:47865"},
+            {"orientation", {{"pitch_deg", 90}}},
+            {"fov", {{"left_deg", 40}, {"right_deg", 40}, {"up_deg", 40}, {"down_deg", 40}}}}}}});
     const ClusterConfig cfg = load_cluster_config(config);
     const SceneConfig scene = load_scene_config(cfg.scene_file);
     const ShowScript show = ShowScript::load(cfg.show_file, scene);

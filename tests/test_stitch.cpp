@@ -211,7 +211,8 @@ TEST(Stitch, FeatheredOverlapHasNoSeam) {
         const auto d = fish.uv_to_direction(FisheyeMapping::pixel_to_uv({x + 0.5, y + 0.5}, kSize));
         return field(*d);
     });
-    const double raw_feathered = max_neighbour_step(feathered, both, 8.0, [&](int x, int y) { return feathered.pixel(x, y)[0]; });
+    const double raw_feathered =
+        max_neighbour_step(feathered, both, 8.0, [&](int x, int y) { return feathered.pixel(x, y)[0]; });
     const double raw_hard = max_neighbour_step(hard, both, 8.0, [&](int x, int y) { return hard.pixel(x, y)[0]; });
     // (Measured: field 0.0045, feathered 0.030, hard 0.094.)
     EXPECT_LT(raw_feathered, 0.5 * raw_hard) << raw_feathered << " vs " << raw_hard;
@@ -355,10 +356,10 @@ TEST(Stitch, RunDirectoryReportsDisagreeingHashesAndMissingFrames) {
     EXPECT_EQ(m2.exposure, 2.0);
     ASSERT_EQ(dome.width, 96);
     ASSERT_EQ(dome.height, 96);
-    const Image expected =
-        stitch_domemaster(cfg.dome, {ca.frustum(), cb.frustum()}, {&ia, &ib}, 96);
+    const Image expected = stitch_domemaster(cfg.dome, {ca.frustum(), cb.frustum()}, {&ia, &ib}, 96);
     double max_err = 0.0;
-    for (size_t i = 0; i < dome.rgba.size(); ++i) max_err = std::max(max_err, double(std::abs(dome.rgba[i] - expected.rgba[i])));
+    for (size_t i = 0; i < dome.rgba.size(); ++i)
+        max_err = std::max(max_err, double(std::abs(dome.rgba[i] - expected.rgba[i])));
     // B went through 8-bit sRGB: about one 1/255 step at most (exposure 0.5 undone).
     EXPECT_LT(max_err, 0.015);
     // Frame 3 is A alone: B's part of the dome is empty (alpha 0), A's part is there.

@@ -64,7 +64,8 @@ TEST(UsbNavigation, ReportsMoveTheCameraAsTheySayAndUnplugStopsIt) {
     auto now = [] { return monotonic_ns(); };
     // The show plays; the cap at rest (inside the dead zone) does not take it over.
     mouse.send_report(test::spacemouse_report(1, 10, -8, 5));
-    ASSERT_TRUE(channel.wait(now(), [](auto&, auto&) { return true; }, std::chrono::seconds(30)));
+    ASSERT_TRUE(channel.wait(
+        now(), [](auto&, auto&) { return true; }, std::chrono::seconds(30)));
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     EXPECT_EQ(test::read_text(opt.events_file).find("\"mode\":\"live\""), std::string::npos);
 

@@ -199,8 +199,10 @@ TEST(Packet, FragmentedSnapshotReassemblesInAnyOrder) {
         auto r = codec.decode(frags[i].data(), frags[i].size());
         ASSERT_TRUE(r.packet) << reject_reason_name(r.reason);
         auto m = re.add(std::move(*r.packet));
-        if (i + 1 < frags.size()) EXPECT_FALSE(m);
-        else done = m;
+        if (i + 1 < frags.size())
+            EXPECT_FALSE(m);
+        else
+            done = m;
     }
     ASSERT_TRUE(done);
     EXPECT_EQ(done->frame, s.frame);
@@ -212,7 +214,8 @@ TEST(Packet, MissingFragmentNeverCompletesAndIsCountedWhenEvicted) {
     Reassembler re(2);
     uint32_t seq = 0;
     auto feed = [&](uint64_t frame, bool drop_one) {
-        auto frags = codec.encode(PacketType::Snapshot, kMasterSender, frame, encode_snapshot(sample_snapshot(60)), 400, &seq);
+        auto frags =
+            codec.encode(PacketType::Snapshot, kMasterSender, frame, encode_snapshot(sample_snapshot(60)), 400, &seq);
         std::optional<Message> out;
         for (size_t i = 0; i < frags.size(); ++i) {
             if (drop_one && i == 1) continue;
@@ -239,7 +242,8 @@ TEST(Packet, MissingFragmentNeverCompletesAndIsCountedWhenEvicted) {
 TEST(Packet, BadDatagramsAreRejectedForTheRightReason) {
     PacketCodec codec(9, key_of(3));
     uint32_t seq = 0;
-    const auto good = codec.encode(PacketType::Snapshot, kMasterSender, 1, encode_snapshot(sample_snapshot(2)), 1400, &seq)[0];
+    const auto good =
+        codec.encode(PacketType::Snapshot, kMasterSender, 1, encode_snapshot(sample_snapshot(2)), 1400, &seq)[0];
     ASSERT_TRUE(codec.decode(good.data(), good.size()).packet);
     auto reason = [&](const std::vector<uint8_t>& d) {
         auto r = codec.decode(d.data(), d.size());
@@ -273,9 +277,22 @@ TEST(Packet, BadDatagramsAreRejectedForTheRightReason) {
     std::vector<uint8_t> raw(kHeaderSize + 4);
     ByteWriter w(raw);
     raw.clear();
-    w.u32(kMagic); w.u16(kProtocolVersion); w.u8(1); w.u8(0); w.u32(9); w.u16(kMasterSender);
-    w.u16(5); w.u16(3);  // fragment 5 of 3
-    w.u16(0); w.u32(0); w.u64(7); w.u64(0); w.u64(1); w.u32(4); w.u32(0); w.u32(4);
+    w.u32(kMagic);
+    w.u16(kProtocolVersion);
+    w.u8(1);
+    w.u8(0);
+    w.u32(9);
+    w.u16(kMasterSender);
+    w.u16(5);
+    w.u16(3);  // fragment 5 of 3
+    w.u16(0);
+    w.u32(0);
+    w.u64(7);
+    w.u64(0);
+    w.u64(1);
+    w.u32(4);
+    w.u32(0);
+    w.u32(4);
     w.u32(0xDEADBEEF);
     AuthKey k = key_of(3);
     uint8_t tag[kTagSize];
@@ -456,20 +473,20 @@ TEST(Sockets, BadDatagramsAreDroppedAndCountedNotFatal) {
     auto w = slave.receive(2000);
     ASSERT_TRUE(w && w->opened);
     const std::vector<uint8_t> msg = encode_snapshot(sample_snapshot(1));
-    send({'n', 'o', 'p', 'e'});                                                               // bad magic
+    send({'n', 'o', 'p', 'e'});  // bad magic
     auto g = good.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0];
     auto t = g;
     t.resize(t.size() - 1);
-    send(t);                                                                                   // truncated
+    send(t);  // truncated
     auto v = g;
     v[4] = 9;
-    send(v);                                                                                   // version
-    send(wrong_cluster.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0]);   // cluster
-    send(wrong_key.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0]);       // key
+    send(v);                                                                                 // version
+    send(wrong_cluster.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0]);  // cluster
+    send(wrong_key.encode(PacketType::Snapshot, kMasterSender, 1, msg, 1400, &seq)[0]);      // key
     auto c = g;
     c[kHeaderSize] ^= 1;
-    send(c);                                                                                   // corrupted
-    send(g);                                                                                   // the good one
+    send(c);  // corrupted
+    send(g);  // the good one
     auto m = slave.receive(2000);
     ASSERT_TRUE(m);
     EXPECT_EQ(m->message.frame, 1u);

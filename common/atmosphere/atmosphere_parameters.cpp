@@ -177,10 +177,9 @@ AtmosphereParameters AtmosphereParameters::earth() {
     // per cent) and an engineering choice: replace with a measured 293 K table (e.g. Serdyuchenko
     // et al. 2014) when ozone colour matters at those wavelengths.
     const double n = p.ozone_peak_number_density();
-    p.ozone_cross_section.anchors = {{360.0, 1.0e-27}, {400.0, 1.5e-27},  {440.0, 8.5e-8 / n},
-                                     {500.0, 1.5e-25}, {550.0, 1.881e-6 / n}, {600.0, 5.0e-25},
-                                     {640.0, 3.2e-25}, {680.0, 6.5e-7 / n},  {730.0, 5.0e-26},
-                                     {780.0, 2.5e-26}, {830.0, 1.0e-26}};
+    p.ozone_cross_section.anchors = {{360.0, 1.0e-27},      {400.0, 1.5e-27}, {440.0, 8.5e-8 / n}, {500.0, 1.5e-25},
+                                     {550.0, 1.881e-6 / n}, {600.0, 5.0e-25}, {640.0, 3.2e-25},    {680.0, 6.5e-7 / n},
+                                     {730.0, 5.0e-26},      {780.0, 2.5e-26}, {830.0, 1.0e-26}};
     p.ground_albedo = SpectralCurve::constant(0.1);
     p.solar_irradiance = blackbody_sun(kAstronomicalUnit);
     return p;
@@ -208,7 +207,7 @@ AtmosphereParameters AtmosphereParameters::mars() {
     p.mie_angstrom_alpha = 0.0;
     p.mie_scale_height = 11000.0;
     p.mie_g = 0.65;
-    p.mie_single_scattering_albedo.anchors = {{400.0, 0.75}, {450.0, 0.84}, {500.0, 0.89}, {550.0, 0.93},
+    p.mie_single_scattering_albedo.anchors = {{400.0, 0.75}, {450.0, 0.84},  {500.0, 0.89}, {550.0, 0.93},
                                               {600.0, 0.96}, {700.0, 0.975}, {800.0, 0.98}};
     // No ozone (Mars' column is < 0.1 % of Earth's).
     p.ozone_column_dobson = 0.0;

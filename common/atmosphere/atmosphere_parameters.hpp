@@ -48,13 +48,13 @@ struct AtmosphereParameters {
     double mie_g = 0.8;                // Cornette-Shanks asymmetry
     SpectralCurve mie_single_scattering_albedo = SpectralCurve::constant(0.9);
 
-    double ozone_column_dobson = 300.0;  // DU (1 DU = 2.687e20 molecules m^-2)
-    double ozone_bottom = 10000.0;       // m, tent profile start
-    double ozone_peak = 25000.0;         // m
-    double ozone_top = 40000.0;          // m
+    double ozone_column_dobson = 300.0;                                // DU (1 DU = 2.687e20 molecules m^-2)
+    double ozone_bottom = 10000.0;                                     // m, tent profile start
+    double ozone_peak = 25000.0;                                       // m
+    double ozone_top = 40000.0;                                        // m
     SpectralCurve ozone_cross_section = SpectralCurve::constant(0.0);  // m^2 per molecule
 
-    SpectralCurve ground_albedo = SpectralCurve::constant(0.1);  // Lambertian
+    SpectralCurve ground_albedo = SpectralCurve::constant(0.1);     // Lambertian
     SpectralCurve solar_irradiance = SpectralCurve::constant(1.0);  // W m^-2 nm^-1 at the planet
 
     // Derived per-wavelength coefficients (m^-1 at density 1).

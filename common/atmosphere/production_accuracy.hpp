@@ -24,13 +24,13 @@ inline constexpr double kLuminanceFloor = 1e-4;
 inline constexpr double kMaxReferenceNoise = 0.05;
 
 struct ErrorStats {
-    std::string camera;         // "all" for the overall entry
+    std::string camera;          // "all" for the overall entry
     double sun_zenith_deg = -1;  // -1 for "all suns"
     int used = 0, skipped = 0, nonzero_where_reference_is_zero = 0, below_floor = 0, reference_limited = 0;
     double median = 0, p99 = 0, max = 0;  // relative luminance error
     double mean_signed = 0;               // mean of (Y_p - Y_r) / Y_r: the bias
     double chroma_median = 0, chroma_p99 = 0;
-    double reference_noise_median = 0;    // median of the reference's relative standard error
+    double reference_noise_median = 0;  // median of the reference's relative standard error
 };
 
 struct AccuracyReport {

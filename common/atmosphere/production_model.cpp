@@ -11,7 +11,8 @@ using namespace cupola::shading;
 
 AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
     auto at3 = [](auto fn) {
-        return vec3(static_cast<float>(fn(kProductionWavelengths[0])), static_cast<float>(fn(kProductionWavelengths[1])),
+        return vec3(static_cast<float>(fn(kProductionWavelengths[0])),
+                    static_cast<float>(fn(kProductionWavelengths[1])),
                     static_cast<float>(fn(kProductionWavelengths[2])));
     };
     AtmosphereParams a{};
@@ -34,10 +35,14 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
         glm::dvec3 num(0.0), den(0.0);
         for (double l = 360.0; l <= 830.0; l += 1.0) {
             glm::dvec3 hat(0.0);
-            if (l <= lb) hat.z = 1.0;
-            else if (l <= lg) hat.y = (l - lb) / (lg - lb), hat.z = 1.0 - hat.y;
-            else if (l <= lr) hat.x = (l - lg) / (lr - lg), hat.y = 1.0 - hat.x;
-            else hat.x = 1.0;
+            if (l <= lb)
+                hat.z = 1.0;
+            else if (l <= lg)
+                hat.y = (l - lb) / (lg - lb), hat.z = 1.0 - hat.y;
+            else if (l <= lr)
+                hat.x = (l - lg) / (lr - lg), hat.y = 1.0 - hat.x;
+            else
+                hat.x = 1.0;
             const double w = p.solar_irradiance(l) * cie1931_xyz_bar(l).y;
             num += hat * w * p.ozone_absorption(l);
             den += hat * w;
@@ -94,7 +99,8 @@ ProductionAtmosphere::ProductionAtmosphere(AtmosphereParameters params, Producti
 }
 
 vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance) const {
-    return radiance(st, t_geometry, transmittance, eclipse_ray(eclipse_no_casters(), vec2(1.0f), vec3(0.0f), vec3(0.0f)));
+    return radiance(st, t_geometry, transmittance,
+                    eclipse_ray(eclipse_no_casters(), vec2(1.0f), vec3(0.0f), vec3(0.0f)));
 }
 
 vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance,
@@ -112,7 +118,8 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
     AtmosphereSegment seg;
     if (quality_.analytic) {
         seg = atm_analytic_view_ray(a, fit_, st, t_geometry);
-        seg.inscatter = seg.inscatter * eclipse_light_along(shadow, no_lut, 0.5f * atm_view_ray_length(a, st, t_geometry));
+        seg.inscatter =
+            seg.inscatter * eclipse_light_along(shadow, no_lut, 0.5f * atm_view_ray_length(a, st, t_geometry));
     } else {
         seg = atm_view_ray_shadowed(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry,
                                     quality_.view_samples, shadow, no_lut);
@@ -127,8 +134,8 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
         } else {
             surface = atm_ground_radiance(a, trans, ts, irr, es, st, a.ground_albedo);
         }
-        out = out + seg.transmittance * surface *
-                        eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r, st.mu));
+        out = out +
+              seg.transmittance * surface * eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r, st.mu));
     }
     if (transmittance) *transmittance = seg.transmittance;
     return out;

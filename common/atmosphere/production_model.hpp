@@ -25,7 +25,6 @@ inline const double kProductionWavelengths[3] = {shading::ATM_LAMBDA_R, shading:
 // The uniform struct of the shared code, at the three sample wavelengths.
 shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p);
 
-
 // Fit of the seed-000 sunlight function to the model's own transmittance toward the Sun at half a
 // Rayleigh scale height (least squares over sun zenith 0..110 degrees).
 shading::AtmosphereAnalyticFit fit_analytic_sun(const shading::AtmosphereParams& a);
@@ -33,8 +32,8 @@ shading::AtmosphereAnalyticFit fit_analytic_sun(const shading::AtmosphereParams&
 struct ProductionRadiance {
     glm::dvec3 rgb{0.0};  // linear sRGB, cd m^-2 scale
     glm::dvec3 xyz{0.0};
-    double luminance = 0.0;                // cd m^-2
-    glm::dvec3 transmittance{1.0};         // along the view ray, at the sample wavelengths
+    double luminance = 0.0;         // cd m^-2
+    glm::dvec3 transmittance{1.0};  // along the view ray, at the sample wavelengths
     bool hits_ground = false;
     bool in_atmosphere = true;
 };

@@ -7,10 +7,10 @@ namespace cupola::atmosphere {
 std::string ProductionQuality::table_key() const {
     return std::string(analytic ? "analytic" : "lut") + ";T" + std::to_string(transmittance_width) + "x" +
            std::to_string(transmittance_height) + "s" + std::to_string(transmittance_steps) + ";M" +
-           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + "o" + std::to_string(ms_orders) + ";E" +
-           std::to_string(irradiance_width) + "x" + std::to_string(irradiance_height) + "d" +
-           std::to_string(irradiance_directions) + "s" + std::to_string(irradiance_samples) +
-           (multiple_scattering ? ";ms" : ";single");
+           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + "o" +
+           std::to_string(ms_orders) + ";E" + std::to_string(irradiance_width) + "x" +
+           std::to_string(irradiance_height) + "d" + std::to_string(irradiance_directions) + "s" +
+           std::to_string(irradiance_samples) + (multiple_scattering ? ";ms" : ";single");
 }
 
 namespace {
@@ -33,7 +33,9 @@ ProductionQuality level(const std::string& name, int tw, int th, int ts, int ms,
 }
 }  // namespace
 
-std::vector<std::string> production_quality_names() { return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra"}; }
+std::vector<std::string> production_quality_names() {
+    return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra"};
+}
 
 ProductionQuality production_quality(const std::string& name) {
     if (name == "analytic") {

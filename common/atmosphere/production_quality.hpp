@@ -9,7 +9,7 @@ namespace cupola::atmosphere {
 
 struct ProductionQuality {
     std::string name;
-    bool analytic = false;          // seed 000 fast mode: no tables beyond the fit, no march
+    bool analytic = false;  // seed 000 fast mode: no tables beyond the fit, no march
     bool multiple_scattering = true;
     int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
     int ms_size = 32, ms_directions = 64, ms_steps = 20;
@@ -22,7 +22,8 @@ struct ProductionQuality {
 };
 
 // The named levels: "analytic", "single" (tables, no multiple scattering), "hillaire" (medium
-// with Hillaire's geometric multiple-scattering tail), "low", "medium", "high", "ultra". Throws std::invalid_argument listing the valid names.
+// with Hillaire's geometric multiple-scattering tail), "low", "medium", "high", "ultra". Throws std::invalid_argument
+// listing the valid names.
 ProductionQuality production_quality(const std::string& name);
 std::vector<std::string> production_quality_names();
 inline constexpr const char* kDefaultProductionQuality = "medium";

@@ -149,8 +149,8 @@ ProductionTables build_production_tables(const std::string& label, const shading
     t.irradiance = make_table(q.irradiance_width, q.irradiance_height);
     if (!q.multiple_scattering) t.multiple_scattering = make_table(1, 1);
     const long ms_passes = q.multiple_scattering ? std::max(1, q.ms_orders - 1) : 1;
-    const long texels = static_cast<long>(t.transmittance.texels.size() + ms_passes * t.multiple_scattering.texels.size() +
-                                          t.irradiance.texels.size());
+    const long texels = static_cast<long>(t.transmittance.texels.size() +
+                                          ms_passes * t.multiple_scattering.texels.size() + t.irradiance.texels.size());
     ProgressBar bar("atmosphere tables " + label, texels);
     const vec2 ts(t.transmittance.width, t.transmittance.height);
     const vec2 ms_size(t.multiple_scattering.width, t.multiple_scattering.height);
@@ -194,7 +194,8 @@ ProductionTables build_production_tables(const std::string& label, const shading
 ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shading::AtmosphereParams& gpu,
                                       const ProductionQuality& q, const TableCacheOptions& cache) {
     const std::string key = table_cache_key(p, q);
-    const fs::path dir = cache.directory.empty() ? fs::path(default_table_cache_directory()) : fs::path(cache.directory);
+    const fs::path dir =
+        cache.directory.empty() ? fs::path(default_table_cache_directory()) : fs::path(cache.directory);
     const std::string stem = (p.name.empty() ? std::string("atmosphere") : p.name) + "-" + key;
     const fs::path files[3] = {dir / (stem + "-transmittance.exr"), dir / (stem + "-multiple-scattering.exr"),
                                dir / (stem + "-irradiance.exr")};
@@ -210,7 +211,8 @@ ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shadi
             spdlog::info("atmosphere {}: tables loaded from cache {}", p.name, (dir / stem).string());
             return t;
         }
-        spdlog::warn("atmosphere {}: cached tables {} are unusable ({}); rebuilding", p.name, (dir / stem).string(), why);
+        spdlog::warn("atmosphere {}: cached tables {} are unusable ({}); rebuilding", p.name, (dir / stem).string(),
+                     why);
     }
     ProductionTables t = build_production_tables(p.name, gpu, q, cache.threads);
     t.cache_key = key;

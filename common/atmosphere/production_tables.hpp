@@ -19,9 +19,9 @@ struct ProductionTables {
     shading::Texture2DData irradiance;
     double build_seconds = 0.0;  // 0 when loaded from the cache
     bool from_cache = false;
-    std::string cache_key;       // hex; file names are <name>-<key>-<table>.exr
+    std::string cache_key;  // hex; file names are <name>-<key>-<table>.exr
 
-    std::size_t bytes() const;   // CPU memory of the three tables (RGBA32F)
+    std::size_t bytes() const;  // CPU memory of the three tables (RGBA32F)
 };
 
 struct TableCacheOptions {

@@ -75,9 +75,8 @@ bool metadata_line(const std::string& line, std::string& key, std::string& value
     const std::size_t eq = line.find('=');
     if (eq == std::string::npos || eq == 2) return false;
     key = line.substr(2, eq - 2);
-    if (!std::all_of(key.begin(), key.end(), [](char ch) {
-            return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
-        }))
+    if (!std::all_of(key.begin(), key.end(),
+                     [](char ch) { return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_'; }))
         return false;
     value = line.substr(eq + 1);
     return true;
@@ -118,9 +117,21 @@ void write_reference_dataset(std::ostream& out, const ReferenceDataset& d, const
 }
 
 ReferenceDataset read_reference_dataset(std::istream& in, const std::string& name) {
-    static const char* const kColumns[] = {"camera", "altitude_m", "view_zenith_deg", "sun_zenith_deg",
-                                           "relative_azimuth_deg", "hits_ground", "in_atmosphere", "luminance",
-                                           "luminance_stderr", "r", "g", "b", "x", "y", "z"};
+    static const char* const kColumns[] = {"camera",
+                                           "altitude_m",
+                                           "view_zenith_deg",
+                                           "sun_zenith_deg",
+                                           "relative_azimuth_deg",
+                                           "hits_ground",
+                                           "in_atmosphere",
+                                           "luminance",
+                                           "luminance_stderr",
+                                           "r",
+                                           "g",
+                                           "b",
+                                           "x",
+                                           "y",
+                                           "z"};
     constexpr std::size_t kFields = std::size(kColumns);
     const std::set<std::string> cameras(validation_cameras().begin(), validation_cameras().end());
 

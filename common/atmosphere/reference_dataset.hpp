@@ -44,7 +44,7 @@ struct ReferenceDataset {
     std::string preset, hash;
     int orders = 0, paths = 0;
     std::uint64_t seed = 0;
-    int directions = 0;  // directions_per_set of validation_set()
+    int directions = 0;                           // directions_per_set of validation_set()
     std::map<std::string, std::string> metadata;  // every "# key=value" line, the required ones included
     std::vector<ReferenceRow> rows;
 };
@@ -54,7 +54,8 @@ ReferenceRow make_reference_row(const ValidationCase& c, const SkyRadiance& s);
 
 // Writes the metadata (the required keys from the fields, then the other entries of `metadata`),
 // free-text `comments` (each written as "# " + line), the header and the rows.
-void write_reference_dataset(std::ostream& out, const ReferenceDataset& d, const std::vector<std::string>& comments = {});
+void write_reference_dataset(std::ostream& out, const ReferenceDataset& d,
+                             const std::vector<std::string>& comments = {});
 
 ReferenceDataset read_reference_dataset(std::istream& in, const std::string& name);
 ReferenceDataset read_reference_dataset(const std::string& path);

@@ -14,8 +14,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // 5-point Gauss-Legendre on [-1, 1].
-constexpr double kGlX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                            0.9061798459386640};
+constexpr double kGlX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
 constexpr double kGlW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
                             0.2369268850561891};
 
@@ -97,8 +96,8 @@ std::vector<double> default_wavelengths() {
 struct ReferenceIntegrator::Segment {
     glm::dvec3 o{0.0}, v{0.0};
     double length = 0.0;
-    std::vector<double> t;         // panel boundaries, t.front() = 0, t.back() = length
-    std::vector<glm::dvec3> cum;   // column densities from 0 to t[i]
+    std::vector<double> t;        // panel boundaries, t.front() = 0, t.back() = length
+    std::vector<glm::dvec3> cum;  // column densities from 0 to t[i]
 };
 
 ReferenceIntegrator::ReferenceIntegrator(AtmosphereParameters params, ReferenceSettings settings)
@@ -138,8 +137,8 @@ ReferenceIntegrator::Segment ReferenceIntegrator::make_segment(const glm::dvec3&
     const double b = glm::dot(origin, dir);
     const double c = glm::dot(origin, origin);
     splits.push_back(-b);  // closest approach to the centre
-    for (double h : {params_.ozone_bottom, params_.ozone_peak, params_.ozone_top, params_.top_radius -
-                                                                                       params_.bottom_radius}) {
+    for (double h :
+         {params_.ozone_bottom, params_.ozone_peak, params_.ozone_top, params_.top_radius - params_.bottom_radius}) {
         const double rk = params_.bottom_radius + h;
         const double disc = b * b - c + rk * rk;
         if (disc < 0.0) continue;
@@ -199,11 +198,14 @@ double ReferenceIntegrator::sample_segment(const Segment& s, const glm::dvec3& s
     while (i + 1 < s.t.size() && glm::dot(sigma, s.cum[i]) < tau) ++i;
     double lo = s.t[i - 1], hi = s.t[i];
     const double tau_lo = glm::dot(sigma, s.cum[i - 1]), tau_hi = glm::dot(sigma, s.cum[i]);
-    double t = tau_hi > tau_lo ? lo + (hi - lo) * std::clamp((tau - tau_lo) / (tau_hi - tau_lo), 0.0, 1.0)
-                               : 0.5 * (lo + hi);
+    double t =
+        tau_hi > tau_lo ? lo + (hi - lo) * std::clamp((tau - tau_lo) / (tau_hi - tau_lo), 0.0, 1.0) : 0.5 * (lo + hi);
     for (int it = 0; it < 60; ++it) {
         const double f = glm::dot(sigma, segment_column(s, t)) - tau;
-        if (f > 0.0) hi = t; else lo = t;
+        if (f > 0.0)
+            hi = t;
+        else
+            lo = t;
         const double df = glm::dot(sigma, densities(s.o + t * s.v));
         double next = df > 0.0 ? t - f / df : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -246,8 +248,8 @@ void ReferenceIntegrator::sun_transmittance(const glm::dvec3& p, const glm::dvec
         out[k] = std::exp(-(beta_r_[k] * d.x + beta_me_[k] * d.y + beta_o_[k] * d.z));
 }
 
-void ReferenceIntegrator::single_scattering(const glm::dvec3& o, const glm::dvec3& v, double length,
-                                            bool hits_ground, const glm::dvec3& sun, SkyRadiance& out) const {
+void ReferenceIntegrator::single_scattering(const glm::dvec3& o, const glm::dvec3& v, double length, bool hits_ground,
+                                            const glm::dvec3& sun, SkyRadiance& out) const {
     const std::size_t n = beta_r_.size();
     out.single_spectrum.assign(n, 0.0);
     out.ground_spectrum.assign(n, 0.0);

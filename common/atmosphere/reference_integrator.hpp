@@ -75,26 +75,26 @@ double henyey_greenstein_phase(double g, double nu);
 std::vector<double> default_wavelengths();
 
 struct ReferenceSettings {
-    int scattering_orders = 4;         // 1 = single scattering + direct ground reflection only
-    double panel_height_m = 250.0;     // altitude per quadrature panel for order 1 and transmittance
-    double ms_panel_height_m = 1500.0; // the same for the Monte Carlo paths (cost vs exactness)
-    int ms_paths = 4096;               // Monte Carlo paths per sky() query
+    int scattering_orders = 4;          // 1 = single scattering + direct ground reflection only
+    double panel_height_m = 250.0;      // altitude per quadrature panel for order 1 and transmittance
+    double ms_panel_height_m = 1500.0;  // the same for the Monte Carlo paths (cost vs exactness)
+    int ms_paths = 4096;                // Monte Carlo paths per sky() query
     std::uint64_t seed = 1;
-    int ms_first_order = 2;            // 1: the Monte Carlo also estimates order 1 (validation)
+    int ms_first_order = 2;  // 1: the Monte Carlo also estimates order 1 (validation)
     std::vector<double> wavelengths_nm = default_wavelengths();  // increasing, >= 2
 };
 
 struct SkyQuery {
-    double altitude_m = 0.0;            // camera above the ground (clamped to kMinCameraAltitude)
-    double view_zenith_deg = 0.0;       // 0 = zenith, 90 = horizon, > 90 below it
+    double altitude_m = 0.0;       // camera above the ground (clamped to kMinCameraAltitude)
+    double view_zenith_deg = 0.0;  // 0 = zenith, 90 = horizon, > 90 below it
     double sun_zenith_deg = 0.0;
     double relative_azimuth_deg = 0.0;  // azimuth of the Sun minus that of the view direction
 };
 
 struct SkyRadiance {
-    glm::dvec3 rgb{0.0};    // linear sRGB, photometric scale (cd m^-2 in luminance)
+    glm::dvec3 rgb{0.0};  // linear sRGB, photometric scale (cd m^-2 in luminance)
     glm::dvec3 xyz{0.0};
-    double luminance = 0.0;  // cd m^-2
+    double luminance = 0.0;        // cd m^-2
     std::vector<double> spectrum;  // W m^-2 sr^-1 nm^-1 at ReferenceSettings::wavelengths_nm
 
     // Components. spectrum = single + ground + multiple (with ms_first_order = 1 it is the

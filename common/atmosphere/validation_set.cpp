@@ -20,8 +20,8 @@ constexpr double kLimbBelowHorizonDeg = 2.0;
 double mu_tangent(double r, double radius) { return -std::sqrt((r - radius) * (r + radius)) / r; }
 
 // Appends n spherical-Fibonacci directions over the zenith-cosine band [mu_lo, mu_hi] (see the header).
-void append_band(std::vector<ValidationCase>& out, const std::string& camera, double altitude,
-                 double sun_zenith_deg, double mu_lo, double mu_hi, int n) {
+void append_band(std::vector<ValidationCase>& out, const std::string& camera, double altitude, double sun_zenith_deg,
+                 double mu_lo, double mu_hi, int n) {
     constexpr double kInvGolden = 1.0 / std::numbers::phi;  // frac(i / phi) = frac(i * (phi - 1))
     for (int i = 0; i < n; ++i) {
         const double mu = mu_hi - (mu_hi - mu_lo) * ((i + 0.5) / n);

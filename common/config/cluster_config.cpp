@@ -56,13 +56,16 @@ void check_host_port(const JsonReader& r, const std::string& key, const std::str
 NetworkConfig read_network(const JsonReader& r) {
     NetworkConfig n;
     std::string t = r.one_of("transport", {"multicast", "broadcast", "unicast"}, "multicast");
-    n.transport = t == "multicast" ? Transport::Multicast : t == "broadcast" ? Transport::Broadcast : Transport::Unicast;
+    n.transport = t == "multicast"   ? Transport::Multicast
+                  : t == "broadcast" ? Transport::Broadcast
+                                     : Transport::Unicast;
     n.multicast_group = ipv4(r, "multicast_group", n.multicast_group);
     if (n.transport == Transport::Multicast) {
         in_addr a{};
         inet_pton(AF_INET, n.multicast_group.c_str(), &a);
         uint32_t h = ntohl(a.s_addr);
-        if ((h >> 28) != 0xE) r.fail("multicast_group", "\"" + n.multicast_group + "\" is not a multicast address (224.0.0.0/4)");
+        if ((h >> 28) != 0xE)
+            r.fail("multicast_group", "\"" + n.multicast_group + "\" is not a multicast address (224.0.0.0/4)");
     }
     n.interface_address = ipv4(r, "interface_address", n.interface_address);
     n.broadcast_address = ipv4(r, "broadcast_address", n.broadcast_address);
@@ -115,7 +118,8 @@ ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Tr
 }  // namespace
 
 const std::vector<std::string>& button_action_names() {
-    static const std::vector<std::string> names = {"next_mode", "toggle_pause", "play", "stop", "orbit_nearest", "none"};
+    static const std::vector<std::string> names = {"next_mode", "toggle_pause",  "play",
+                                                   "stop",      "orbit_nearest", "none"};
     return names;
 }
 
@@ -198,8 +202,7 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
                     size_t used = 0;
                     index = std::stoi(key, &used);
                     if (used != key.size() || index < 0 || index > 31) index = -1;
-                } catch (const std::exception&) {
-                }
+                } catch (const std::exception&) {}
                 if (index < 0) b->fail(key, "a button is named by its index, 0..31");
                 ic.button_actions[index] = b->one_of(key, button_action_names());
             }

@@ -17,16 +17,16 @@ enum class Transport { Multicast, Broadcast, Unicast };
 struct NetworkConfig {
     Transport transport = Transport::Multicast;
     std::string multicast_group = "239.255.76.67";
-    std::string interface_address = "127.0.0.1";      // multicast interface / bind address for slaves
+    std::string interface_address = "127.0.0.1";  // multicast interface / bind address for slaves
     std::string broadcast_address = "127.255.255.255";
-    std::string master_address = "127.0.0.1";         // where slaves send their reports
-    uint16_t snapshot_port = 47600;                    // master -> slaves (multicast, broadcast)
-    uint16_t report_port = 47601;                      // slaves -> master
-    int max_datagram_bytes = 1400;                     // fragments snapshots above this
-    int channel_timeout_ms = 2000;                     // silent channel is dropped after this
-    int resend_interval_ms = 100;                      // snapshot re-sent while the barrier waits
-    int hello_wait_ms = 15000;                         // master waits this long for all channels at start
-    bool strict_key_permissions = false;               // a key file open to every user: error, not warning
+    std::string master_address = "127.0.0.1";  // where slaves send their reports
+    uint16_t snapshot_port = 47600;            // master -> slaves (multicast, broadcast)
+    uint16_t report_port = 47601;              // slaves -> master
+    int max_datagram_bytes = 1400;             // fragments snapshots above this
+    int channel_timeout_ms = 2000;             // silent channel is dropped after this
+    int resend_interval_ms = 100;              // snapshot re-sent while the barrier waits
+    int hello_wait_ms = 15000;                 // master waits this long for all channels at start
+    bool strict_key_permissions = false;       // a key file open to every user: error, not warning
 };
 
 struct DomeConfig {
@@ -39,15 +39,15 @@ struct DomeConfig {
 // master/auto_exposure.hpp): exposure = key / (mean scene luminance over the dome), clamped.
 struct AutoExposureConfig {
     bool enabled = false;
-    double key = 0.18;            // display value given to the mean luminance
+    double key = 0.18;  // display value given to the mean luminance
     double min_exposure = 1e-9;
-    double max_exposure = 1e3;    // reached on a black (night, no-atmosphere) sky
+    double max_exposure = 1e3;  // reached on a black (night, no-atmosphere) sky
 };
 
 struct OutputConfig {
     std::vector<std::string> formats = {"png"};  // "png" (8-bit sRGB) and/or "exr" (half float, linear)
     int domemaster_size = 1024;
-    double exposure = 1.0;        // fixed exposure (scene units -> display), unless auto_exposure
+    double exposure = 1.0;  // fixed exposure (scene units -> display), unless auto_exposure
     AutoExposureConfig auto_exposure;
 };
 
@@ -84,12 +84,12 @@ struct ChannelConfig {
 };
 
 struct ClusterConfig {
-    std::string file;        // absolute path of the config file
-    std::string directory;   // its directory; relative paths resolve against it
+    std::string file;       // absolute path of the config file
+    std::string directory;  // its directory; relative paths resolve against it
     uint32_t cluster_id = 1;
-    std::string key_file;    // resolved path
-    std::string scene_file;  // resolved path
-    std::string show_file;   // resolved path
+    std::string key_file;        // resolved path
+    std::string scene_file;      // resolved path
+    std::string show_file;       // resolved path
     double frame_rate_hz = 0.0;  // 0: as fast as the barrier allows
     int egl_device = -1;         // -1: first usable device, then Mesa surfaceless
     NetworkConfig network;

@@ -9,7 +9,8 @@ class ConfigError : public std::runtime_error {
 public:
     ConfigError(std::string file, std::string field, const std::string& what)
         : std::runtime_error(file + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + what),
-          file_(std::move(file)), field_(std::move(field)) {}
+          file_(std::move(file)),
+          field_(std::move(field)) {}
     const std::string& file() const { return file_; }
     const std::string& field() const { return field_; }
 

@@ -33,7 +33,9 @@ nlohmann::json JsonReader::parse_file(const std::string& file) {
 
 std::string JsonReader::field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
-void JsonReader::fail(const std::string& key, const std::string& what) const { throw ConfigError(file_, field(key), what); }
+void JsonReader::fail(const std::string& key, const std::string& what) const {
+    throw ConfigError(file_, field(key), what);
+}
 
 bool JsonReader::has(const std::string& key) const {
     seen_.insert(key);
@@ -77,9 +79,7 @@ double JsonReader::number(const std::string& key) const {
     return d;
 }
 
-double JsonReader::number(const std::string& key, double fallback) const {
-    return has(key) ? number(key) : fallback;
-}
+double JsonReader::number(const std::string& key, double fallback) const { return has(key) ? number(key) : fallback; }
 
 double JsonReader::number_in(const std::string& key, double lo, double hi) const {
     double d = number(key);
@@ -148,7 +148,8 @@ std::vector<std::string> JsonReader::strings(const std::string& key, const std::
     std::vector<std::string> out;
     for (size_t i = 0; i < v.size(); ++i) {
         if (!v[i].is_string())
-            throw ConfigError(file_, field(key) + "[" + std::to_string(i) + "]", "expected a string, got " + describe(v[i]));
+            throw ConfigError(file_, field(key) + "[" + std::to_string(i) + "]",
+                              "expected a string, got " + describe(v[i]));
         out.push_back(v[i].get<std::string>());
     }
     return out;

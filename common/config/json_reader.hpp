@@ -22,9 +22,9 @@ public:
     static nlohmann::json parse_file(const std::string& file);
 
     bool has(const std::string& key) const;
-    JsonReader child(const std::string& key) const;                      // required object
+    JsonReader child(const std::string& key) const;  // required object
     std::optional<JsonReader> optional_child(const std::string& key) const;
-    std::vector<JsonReader> array(const std::string& key) const;        // required array of objects
+    std::vector<JsonReader> array(const std::string& key) const;  // required array of objects
 
     double number(const std::string& key) const;
     double number(const std::string& key, double fallback) const;

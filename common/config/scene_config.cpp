@@ -70,11 +70,13 @@ GlareConfig read_glare(const JsonReader& g) {
     c.halo_width_deg = g.number_in("halo_width_deg", 0.01, 10.0, c.halo_width_deg);
     c.halo_fraction = g.number_in("halo_fraction", 0.0, 1.0, c.halo_fraction);
     c.streak_count = static_cast<int>(g.integer_in("streak_count", 2, 1024, c.streak_count));
-    if (c.streak_count % 2 != 0) g.fail("streak_count", "must be even (rays twinkle in pairs so the energy stays constant)");
+    if (c.streak_count % 2 != 0)
+        g.fail("streak_count", "must be even (rays twinkle in pairs so the energy stays constant)");
     c.streak_contrast = g.number_in("streak_contrast", 0.0, 1.0, c.streak_contrast);
     c.animation_rate = g.number_in("animation_rate", 0.0, 100.0, c.animation_rate);
-    c.visibility = g.one_of("visibility", {"shared", "per_channel"}, "shared") == "shared" ? GlareVisibilityMode::Shared
-                                                                                          : GlareVisibilityMode::PerChannel;
+    c.visibility = g.one_of("visibility", {"shared", "per_channel"}, "shared") == "shared"
+                       ? GlareVisibilityMode::Shared
+                       : GlareVisibilityMode::PerChannel;
     c.min_display = g.number_in("min_display", 0.0, 1e6, c.min_display);
     c.max_sources = static_cast<int>(g.integer_in("max_sources", 1, 64, c.max_sources));
     c.probe_size = static_cast<int>(g.integer_in("probe_size", 8, 512, c.probe_size));
@@ -86,7 +88,8 @@ AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
     AtmosphereConfig c;
     c.present = true;
     c.preset = a.one_of("preset", {"earth", "mars"});
-    c.parameters = c.preset == "earth" ? atmosphere::AtmosphereParameters::earth() : atmosphere::AtmosphereParameters::mars();
+    c.parameters =
+        c.preset == "earth" ? atmosphere::AtmosphereParameters::earth() : atmosphere::AtmosphereParameters::mars();
     c.model = a.one_of("model", atmosphere::production_quality_names(), c.model);
     atmosphere::AtmosphereParameters& p = c.parameters;
     // The ground is the body's surface; the shell keeps the preset's thickness unless overridden.
@@ -102,10 +105,11 @@ AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
         p.mie_single_scattering_albedo =
             atmosphere::SpectralCurve::constant(a.number_in("mie_single_scattering_albedo", 0.0, 1.0));
     p.ozone_column_dobson = a.number_in("ozone_column_dobson", 0.0, 2000.0, p.ozone_column_dobson);
-    if (a.has("ground_albedo")) p.ground_albedo = atmosphere::SpectralCurve::constant(a.number_in("ground_albedo", 0.0, 1.0));
+    if (a.has("ground_albedo"))
+        p.ground_albedo = atmosphere::SpectralCurve::constant(a.number_in("ground_albedo", 0.0, 1.0));
     if (p.mie_scale_height >= thickness || p.rayleigh_scale_height >= thickness)
-        a.fail("top_altitude_m", "the atmosphere (" + std::to_string(thickness) +
-                                     " m) must be thicker than its scale heights");
+        a.fail("top_altitude_m",
+               "the atmosphere (" + std::to_string(thickness) + " m) must be thicker than its scale heights");
     a.reject_unknown_keys();
     return c;
 }
@@ -129,7 +133,8 @@ SceneConfig load_scene_config(const std::string& file) {
         if (!names.insert(c.name).second) b.fail("name", "body name \"" + c.name + "\" is used twice");
         std::string kind = b.one_of("kind", {"star", "planet", "moon"});
         c.kind = kind == "star" ? BodyKind::Star : kind == "planet" ? BodyKind::Planet : BodyKind::Moon;
-        c.ephemeris = b.one_of("ephemeris", {"sun", "earth", "moon", "mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"});
+        c.ephemeris = b.one_of("ephemeris", {"sun", "earth", "moon", "mercury", "venus", "mars", "jupiter", "saturn",
+                                             "uranus", "neptune"});
         c.radius_m = b.number_in("radius_m", 1.0, 1e12);
         std::string tex = b.string("texture", "generated:" + c.name);
         if (tex.rfind("generated:", 0) == 0) {
@@ -137,7 +142,9 @@ SceneConfig load_scene_config(const std::string& file) {
         } else {
             c.texture = resolve_path(dir, tex);
             if (!fs::is_regular_file(c.texture))
-                b.fail("texture", "image \"" + c.texture + "\" does not exist (install it with scripts/setup.sh, or use \"generated:" + c.name + "\")");
+                b.fail("texture",
+                       "image \"" + c.texture +
+                           "\" does not exist (install it with scripts/setup.sh, or use \"generated:" + c.name + "\")");
         }
         if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
         c.albedo = b.number_in("albedo", 0.0, 1.0, c.albedo);

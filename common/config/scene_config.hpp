@@ -22,23 +22,23 @@ struct AtmosphereConfig {
 };
 
 struct BodyConfig {
-    uint16_t id = 0;            // index in SceneConfig::bodies; the snapshot refers to bodies by it
+    uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
     BodyKind kind = BodyKind::Planet;
-    std::string ephemeris;      // analytic model: "sun", "earth" or "moon"
+    std::string ephemeris;  // analytic model: "sun", "earth" or "moon"
     double radius_m = 1.0;
-    std::string texture;        // resolved image path, or "generated:<name>"
-    glm::vec3 tint{1.0f};       // multiplies the texture (or the disc colour of a star)
-    double albedo = 0.3;        // planets and moons
+    std::string texture;            // resolved image path, or "generated:<name>"
+    glm::vec3 tint{1.0f};           // multiplies the texture (or the disc colour of a star)
+    double albedo = 0.3;            // planets and moons
     double limb_darkening_u = 0.6;  // stars: linear limb-darkening coefficient
-    double radiance = 1.0e3;    // stars: disc-centre radiance in scene units (planets are lit by it)
-    AtmosphereConfig atmosphere;  // planets and moons
+    double radiance = 1.0e3;        // stars: disc-centre radiance in scene units (planets are lit by it)
+    AtmosphereConfig atmosphere;    // planets and moons
     // As an eclipse caster: the light left deep in its umbra, per unit sunlight (rgb). A body
     // with an atmosphere derives it from the atmosphere's grazing transmittance times
     // umbra_brightness unless umbra_light is given; without one, umbra_light (default black).
     std::optional<glm::vec3> umbra_light;
     double umbra_brightness = 2.5e-4;
-    double corona = 1.0;        // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
+    double corona = 1.0;  // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
 };
 
 // Which bodies shadow which (seed 000, section 3.3.3): in a group the parent shadows its
@@ -51,7 +51,7 @@ struct ShadowGroupConfig {
 };
 
 enum class ShadowMode : uint32_t { Exact = 0, Fast = 1, Lookup = 2, Illustrative = 3, Off = 4 };
-const std::vector<std::string>& shadow_mode_names();  // "exact", "fast", "lut", "illustrative", "off"
+const std::vector<std::string>& shadow_mode_names();        // "exact", "fast", "lut", "illustrative", "off"
 ShadowMode shadow_mode_from_name(const std::string& name);  // throws std::invalid_argument
 
 struct ShadowConfig {
@@ -61,10 +61,10 @@ struct ShadowConfig {
 };
 
 struct StarFieldConfig {
-    std::string catalog;              // resolved path of the compact star catalogue (CSV)
+    std::string catalog;  // resolved path of the compact star catalogue (CSV)
     double magnitude_limit = 6.5;
-    double psf_sigma_arcmin = 2.0;    // angular size of a star, cluster-wide
-    double zero_mag_flux = 2.0e-3;    // integrated flux of a V=0 star in scene units x steradian
+    double psf_sigma_arcmin = 2.0;  // angular size of a star, cluster-wide
+    double zero_mag_flux = 2.0e-3;  // integrated flux of a V=0 star in scene units x steradian
 };
 
 // How a channel decides how much of a glare source is visible: from the whole cluster's
@@ -78,20 +78,20 @@ enum class GlareVisibilityMode { Shared, PerChannel };
 // from the scene file: no glare.
 struct GlareConfig {
     bool enabled = false;
-    double strength = 1.0;           // x the physical point-spread function of the eye
-    double extent_deg = 60.0;        // nothing beyond this angle from a source
-    double halo_radius_deg = 3.5;    // lenticular halo ring at 550 nm (design value)
+    double strength = 1.0;         // x the physical point-spread function of the eye
+    double extent_deg = 60.0;      // nothing beyond this angle from a source
+    double halo_radius_deg = 3.5;  // lenticular halo ring at 550 nm (design value)
     double halo_width_deg = 0.35;
-    double halo_fraction = 0.15;     // share of the flare energy in the ring
-    int streak_count = 96;           // ciliary-corona rays
+    double halo_fraction = 0.15;  // share of the flare energy in the ring
+    int streak_count = 96;        // ciliary-corona rays
     double streak_contrast = 0.6;
-    double animation_rate = 1.0;     // animation phase per show second (carried in the snapshot)
+    double animation_rate = 1.0;  // animation phase per show second (carried in the snapshot)
     GlareVisibilityMode visibility = GlareVisibilityMode::Shared;
     // Stars and planets get a glare when its display value one degree from them (irradiance x
     // exposure x PSF) reaches min_display; it fades in up to twice that, so nothing pops.
     double min_display = 2e-3;
-    int max_sources = 8;             // the brightest sources, the Sun first
-    int probe_size = 64;             // occlusion-query probe, pixels per side
+    int max_sources = 8;  // the brightest sources, the Sun first
+    int probe_size = 64;  // occlusion-query probe, pixels per side
 };
 
 struct SceneConfig {

@@ -73,8 +73,7 @@ void sample_bilinear(const Image& image, double x, double y, float out[4]) {
     const float* p01 = image.pixel(xa, yb);
     const float* p11 = image.pixel(xb, yb);
     const double w00 = (1 - ax) * (1 - ay), w10 = ax * (1 - ay), w01 = (1 - ax) * ay, w11 = ax * ay;
-    for (int c = 0; c < 4; ++c)
-        out[c] = static_cast<float>(w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c]);
+    for (int c = 0; c < 4; ++c) out[c] = static_cast<float>(w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c]);
 }
 
 Image stitch_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,

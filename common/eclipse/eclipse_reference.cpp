@@ -21,18 +21,22 @@ namespace {
 
 // 21-point Gauss-Kronrod rule on [-1, 1] (QUADPACK qk21): Kronrod nodes/weights, x >= 0 half;
 // the odd entries 1, 3, 5, 7, 9 are the 10-point Gauss nodes, with Gauss weights kG10.
-constexpr double kXK[11] = {0.995657163025808080735527280689003, 0.973906528517171720077964012084452,
-                            0.930157491355708226001207180059508, 0.865063366688984510732096688423493,
-                            0.780817726586416897063717578345042, 0.679409568299024406234327365114874,
-                            0.562757134668604683339000099272694, 0.433395394129247190799265943165784,
-                            0.294392862701460198131126603103866, 0.148874338981631210884826001129720,
+constexpr double kXK[11] = {0.995657163025808080735527280689003,
+                            0.973906528517171720077964012084452,
+                            0.930157491355708226001207180059508,
+                            0.865063366688984510732096688423493,
+                            0.780817726586416897063717578345042,
+                            0.679409568299024406234327365114874,
+                            0.562757134668604683339000099272694,
+                            0.433395394129247190799265943165784,
+                            0.294392862701460198131126603103866,
+                            0.148874338981631210884826001129720,
                             0.0};
-constexpr double kWK[11] = {0.011694638867371874278064396062192, 0.032558162307964727478818972459390,
-                            0.054755896574351996031381300244580, 0.075039674810919952767043140916190,
-                            0.093125454583697605535065465083366, 0.109387158802297641899210590325805,
-                            0.123491976262065851077208980297514, 0.134709217311473325928054001771707,
-                            0.142775938577060080797094273138717, 0.147739104901338491374841515972068,
-                            0.149445554002916905664936468389821};
+constexpr double kWK[11] = {
+    0.011694638867371874278064396062192, 0.032558162307964727478818972459390, 0.054755896574351996031381300244580,
+    0.075039674810919952767043140916190, 0.093125454583697605535065465083366, 0.109387158802297641899210590325805,
+    0.123491976262065851077208980297514, 0.134709217311473325928054001771707, 0.142775938577060080797094273138717,
+    0.147739104901338491374841515972068, 0.149445554002916905664936468389821};
 constexpr double kG10[5] = {0.066671344308688137593568809893332, 0.149451349150580593145776339657697,
                             0.219086362515982043995534934228163, 0.269266719309996355091226921569469,
                             0.295524224714752870173892994651338};
@@ -163,7 +167,9 @@ ReferenceResult reference(double a, double s, double u, double tol) {
 
 }  // namespace
 
-ReferenceResult visible_fraction_reference_detail(double a, double s, double u) { return reference(a, s, u, kTolerance); }
+ReferenceResult visible_fraction_reference_detail(double a, double s, double u) {
+    return reference(a, s, u, kTolerance);
+}
 
 double visible_fraction_reference(double a, double s, double u) { return reference(a, s, u, kTolerance).visible; }
 
@@ -179,9 +185,9 @@ shading::Texture2DData compute_lut(double u, int width, int height) {
         for (int j; (j = next_row.fetch_add(1)) < height;)
             for (int i = 0; i < width; ++i) {
                 // The shader's own inverse mapping (float), so texel and lookup agree exactly.
-                const glm::vec2 as = shading::eclipse_lut_parameters(
-                    glm::vec2(static_cast<float>(i) / static_cast<float>(width - 1),
-                              static_cast<float>(j) / static_cast<float>(height - 1)));
+                const glm::vec2 as =
+                    shading::eclipse_lut_parameters(glm::vec2(static_cast<float>(i) / static_cast<float>(width - 1),
+                                                              static_cast<float>(j) / static_cast<float>(height - 1)));
                 const float v = static_cast<float>(reference(as.x, as.y, u, kTableTolerance).visible);
                 t.texels[static_cast<size_t>(j) * width + i] = glm::vec4(v, v, v, 1.0f);
             }
@@ -200,7 +206,8 @@ shading::Texture2DData build_eclipse_lut(double u, int width, int height) {
     if (width < 2 || height < 2)
         throw std::invalid_argument("eclipse LUT: need width, height >= 2 (got " + std::to_string(width) + " x " +
                                     std::to_string(height) + ")");
-    if (!(u >= 0.0 && u <= 1.0)) throw std::invalid_argument("eclipse LUT: need u in [0, 1] (got " + std::to_string(u) + ")");
+    if (!(u >= 0.0 && u <= 1.0))
+        throw std::invalid_argument("eclipse LUT: need u in [0, 1] (got " + std::to_string(u) + ")");
     // Every renderer of a process asks for the same table: computed once per (u, size).
     static std::mutex mutex;
     static std::map<std::tuple<double, int, int>, shading::Texture2DData> cache;

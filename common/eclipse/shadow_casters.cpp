@@ -34,7 +34,7 @@ bool penumbra_reaches(const glm::dvec3& sun, double sun_r, const glm::dvec3& cas
     if (length <= sun_r + caster_r) return false;  // degenerate: caster touching the Sun
     const glm::dvec3 u = axis / length;
     const glm::dvec3 w = receiver - caster;
-    const double x = glm::dot(w, u);  // behind the caster along the axis
+    const double x = glm::dot(w, u);                 // behind the caster along the axis
     if (x < -(receiver_r + caster_r)) return false;  // the receiver is on the Sun's side
     const double perp = glm::length(w - x * u);
     const double r_p = caster_r + std::max(x, 0.0) * (sun_r + caster_r) / length;

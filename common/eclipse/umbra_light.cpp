@@ -8,8 +8,8 @@ glm::vec3 grazing_transmittance(const atmosphere::ProductionAtmosphere& model, d
     const shading::AtmosphereParams& a = model.shader_params();
     const shading::Texture2DData& t = model.tables().transmittance;
     const float r = a.bottom_radius + static_cast<float>(altitude_m);
-    const glm::vec3 half = shading::atm_lookup_transmittance(a, shading::sampler2D{&t},
-                                                             glm::vec2(t.width, t.height), r, 0.0f);
+    const glm::vec3 half =
+        shading::atm_lookup_transmittance(a, shading::sampler2D{&t}, glm::vec2(t.width, t.height), r, 0.0f);
     return half * half;
 }
 

@@ -50,7 +50,7 @@ void segment(double R, double alpha, double& area, double& centroid) {
 Hidden lens(double sigma, double rho, double theta) {
     if (theta >= sigma + rho) return {};
     if (rho >= sigma + theta) return {kPi * sigma * sigma, 0.0};  // source wholly behind the occluder
-    if (sigma >= rho + theta) {                                     // occluder wholly on the disc
+    if (sigma >= rho + theta) {                                   // occluder wholly on the disc
         const double a = kPi * rho * rho;
         return {a, a * theta};
     }
@@ -66,8 +66,8 @@ Hidden lens(double sigma, double rho, double theta) {
     const double x_source = ((sigma - rho) * (sigma + rho) + theta * theta) / (2.0 * theta);
     const double x_occluder = ((rho - sigma) * (rho + sigma) + theta * theta) / (2.0 * theta);
     double a1 = 0.0, c1 = 0.0, a2 = 0.0, c2 = 0.0;
-    segment(sigma, std::atan2(y0, x_source), a1, c1);   // the source's, centroid at +c1
-    segment(rho, std::atan2(y0, x_occluder), a2, c2);   // the occluder's, centroid at theta - c2
+    segment(sigma, std::atan2(y0, x_source), a1, c1);  // the source's, centroid at +c1
+    segment(rho, std::atan2(y0, x_occluder), a2, c2);  // the occluder's, centroid at theta - c2
     return {a1 + a2, a1 * c1 + a2 * (theta - c2)};
 }
 
@@ -102,7 +102,7 @@ GlareVisibility analytic_visibility(const glm::dvec3& camera_m, const glm::dvec3
         const double dc = glm::length(to_occluder);
         const double r = std::max(occ.radius_m, 0.0);
         if (dc <= r) return {0.0, glm::dvec3(0.0)};  // camera inside an occluder: nothing visible
-        if (dc - r >= ds) continue;                   // near side beyond the source's centre
+        if (dc - r >= ds) continue;                  // near side beyond the source's centre
         const glm::dvec3 uc = to_occluder / dc;
         const double rho = angular_radius(r, dc);
         const double theta = std::atan2(glm::length(glm::cross(us, uc)), glm::dot(us, uc));
@@ -139,7 +139,8 @@ GlareVisibility analytic_visibility(const glm::dvec3& camera_m, const glm::dvec3
     return out;
 }
 
-std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene, uint16_t source_body_id) {
+std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene,
+                                               uint16_t source_body_id) {
     std::vector<SphereOccluder> out;
     for (const BodyState& st : snap.bodies) {
         if (st.id == source_body_id || st.id >= scene.bodies.size()) continue;

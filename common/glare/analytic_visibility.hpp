@@ -60,10 +60,10 @@ struct SphereOccluder {
 };
 
 struct GlareVisibility {
-    double visible_fraction = 1.0;        // of the source disc's area, [0, 1]
-    glm::dvec3 centroid_offset{0.0};      // world frame, radians: from the disc centre toward the
-                                          // centroid of its visible part, perpendicular to the
-                                          // source direction (zero when unoccluded or fully hidden)
+    double visible_fraction = 1.0;    // of the source disc's area, [0, 1]
+    glm::dvec3 centroid_offset{0.0};  // world frame, radians: from the disc centre toward the
+                                      // centroid of its visible part, perpendicular to the
+                                      // source direction (zero when unoccluded or fully hidden)
 };
 
 // Occluders whose angular radius reaches this (radians) are treated with the straight-edge limit

@@ -17,9 +17,7 @@ GlareFrame glare_frame(const glm::dvec3& center_world, const glm::dquat& camera_
     return f;
 }
 
-double glare_wedge_mid_angle(int wedge) {
-    return (wedge + 0.5) * 2.0 * std::numbers::pi / GlareMeasurement::kWedges;
-}
+double glare_wedge_mid_angle(int wedge) { return (wedge + 0.5) * 2.0 * std::numbers::pi / GlareMeasurement::kWedges; }
 
 glm::dvec3 glare_centroid_offset(const GlareFrame& frame, const float (&visible_sr)[GlareMeasurement::kWedges],
                                  double angular_radius) {

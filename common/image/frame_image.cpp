@@ -22,7 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 // Attribute names (see the header comment).
 constexpr const char* kAttrChannel = "cupola:channel";
 constexpr const char* kAttrChannelName = "cupola:channel_name";
@@ -235,9 +234,9 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
     in->close();
 
     // Display-referred (8/16-bit integer) files are sRGB-encoded; float/half files are linear.
-    const bool display_referred = !(spec.format.basetype == OIIO::TypeDesc::FLOAT ||
-                                    spec.format.basetype == OIIO::TypeDesc::HALF ||
-                                    spec.format.basetype == OIIO::TypeDesc::DOUBLE);
+    const bool display_referred =
+        !(spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
+          spec.format.basetype == OIIO::TypeDesc::DOUBLE);
     double exposure = 1.0;
     double recorded = 1.0;
     if (get_double_attr(spec, kAttrExposure, recorded) && std::isfinite(recorded) && recorded > 0.0)
@@ -249,8 +248,8 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
     img.width = w;
     img.height = h;
     img.rgba.assign(static_cast<size_t>(w) * h * 4, 0.0f);
-    const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel
-                      : (nc == 2 ? 1 : (nc >= 4 ? 3 : -1));
+    const int alpha =
+        spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel : (nc == 2 ? 1 : (nc >= 4 ? 3 : -1));
     for (size_t i = 0, npx = static_cast<size_t>(w) * h; i < npx; ++i) {
         const float* s = &buf[i * nc];
         float rgb[3];
@@ -303,9 +302,9 @@ std::vector<std::string> write_frame(const std::string& dir, const Image& image,
                                      const std::vector<std::string>& formats, double exposure) {
     if (image.width <= 0 || image.height <= 0 ||
         image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-        throw std::runtime_error("cannot write frame " + std::to_string(meta.frame) + " to " + dir +
-                                 ": image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                 " with " + std::to_string(image.rgba.size()) + " floats");
+        throw std::runtime_error("cannot write frame " + std::to_string(meta.frame) + " to " + dir + ": image is " +
+                                 std::to_string(image.width) + "x" + std::to_string(image.height) + " with " +
+                                 std::to_string(image.rgba.size()) + " floats");
     if (!std::isfinite(exposure) || exposure <= 0.0)
         throw std::runtime_error("cannot write frame to " + dir + ": exposure " + fmt_double(exposure) +
                                  " is not a positive number");

@@ -74,7 +74,8 @@ void UdpSocket::bind(const sockaddr_in& a) {
 
 void UdpSocket::join_multicast(const std::string& group, const std::string& iface) {
     ip_mreq m{};
-    if (inet_pton(AF_INET, group.c_str(), &m.imr_multiaddr) != 1 || inet_pton(AF_INET, iface.c_str(), &m.imr_interface) != 1)
+    if (inet_pton(AF_INET, group.c_str(), &m.imr_multiaddr) != 1 ||
+        inet_pton(AF_INET, iface.c_str(), &m.imr_interface) != 1)
         throw std::invalid_argument("bad multicast group or interface: " + group + " / " + iface);
     if (setsockopt(fd_, IPPROTO_IP, IP_ADD_MEMBERSHIP, &m, sizeof m) != 0)
         fail("IP_ADD_MEMBERSHIP " + group + " on " + iface);

@@ -29,8 +29,8 @@ uint64_t WireCounters::malformed() const {
 std::string WireCounters::summary() const {
     std::ostringstream os;
     os << "received " << datagrams_received << " datagrams / " << messages_received << " messages, sent "
-       << datagrams_sent << " (" << send_failures << " failed), duplicates " << duplicates << ", reordered " << reordered << ", incomplete "
-       << incomplete << ", rejected " << total_rejected();
+       << datagrams_sent << " (" << send_failures << " failed), duplicates " << duplicates << ", reordered "
+       << reordered << ", incomplete " << incomplete << ", rejected " << total_rejected();
     bool first = true;
     for (size_t i = 0; i < rejected.size(); ++i) {
         if (!rejected[i]) continue;
@@ -85,8 +85,8 @@ void WireEndpoint::send(PacketType type, uint64_t frame, const std::vector<uint8
             }
             const int err = errno;
             if (++counters_.send_failures <= 3 || counters_.send_failures % 100 == 0)
-                spdlog::warn("{}: could not send to {}: {} ({} datagrams so far); the protocol will retry",
-                             log_name_, to_string(to), std::strerror(err), counters_.send_failures);
+                spdlog::warn("{}: could not send to {}: {} ({} datagrams so far); the protocol will retry", log_name_,
+                             to_string(to), std::strerror(err), counters_.send_failures);
         }
 }
 
@@ -114,9 +114,15 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
         const PacketHeader& h = r.packet->header;
         const GuardVerdict g = guard_.check(h, monotonic_ns());
         switch (g.kind) {
-            case GuardVerdict::Rejected: count_reject(g.reason, d->from); continue;
-            case GuardVerdict::Duplicate: ++counters_.duplicates; continue;
-            case GuardVerdict::Ignored: ++counters_.ignored; continue;
+            case GuardVerdict::Rejected:
+                count_reject(g.reason, d->from);
+                continue;
+            case GuardVerdict::Duplicate:
+                ++counters_.duplicates;
+                continue;
+            case GuardVerdict::Ignored:
+                ++counters_.ignored;
+                continue;
             case GuardVerdict::Unverified: {
                 // Authentic, but its session is not established: pass it up for the handshake only.
                 ++counters_.unverified;
@@ -129,7 +135,8 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
                 return um;
             }
             case GuardVerdict::Accept:
-            case GuardVerdict::Opened: break;
+            case GuardVerdict::Opened:
+                break;
         }
         if (g.reordered) ++counters_.reordered;
         const bool opened = g.kind == GuardVerdict::Opened;
@@ -137,8 +144,8 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
         if (opened) {
             ++counters_.sessions_opened;
             spdlog::info("{}: {} {} established session {:016x} from {}", log_name_,
-                         h.sender == kMasterSender ? "master" : "channel", h.sender == kMasterSender ? "" : std::to_string(h.sender),
-                         h.session, to_string(d->from));
+                         h.sender == kMasterSender ? "master" : "channel",
+                         h.sender == kMasterSender ? "" : std::to_string(h.sender), h.session, to_string(d->from));
         }
         const uint64_t inconsistent_before = reassembler_.inconsistent();
         const uint64_t incomplete_before = reassembler_.incomplete_dropped();
@@ -170,8 +177,10 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
 std::vector<sockaddr_in> snapshot_destinations(const ClusterConfig& cfg) {
     const auto& n = cfg.network;
     switch (n.transport) {
-        case Transport::Multicast: return {make_address(n.multicast_group, n.snapshot_port)};
-        case Transport::Broadcast: return {make_address(n.broadcast_address, n.snapshot_port)};
+        case Transport::Multicast:
+            return {make_address(n.multicast_group, n.snapshot_port)};
+        case Transport::Broadcast:
+            return {make_address(n.broadcast_address, n.snapshot_port)};
         case Transport::Unicast: {
             std::vector<sockaddr_in> out;
             for (const auto& c : cfg.channels) out.push_back(parse_host_port(c.unicast_address));

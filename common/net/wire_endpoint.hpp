@@ -23,13 +23,13 @@ struct WireCounters {
     uint64_t datagrams_sent = 0;
     uint64_t messages_received = 0;
     std::array<uint64_t, static_cast<size_t>(RejectReason::Count)> rejected{};
-    uint64_t duplicates = 0;      // a datagram repeated by the network (dropped)
-    uint64_t reordered = 0;       // accepted after a later datagram of the same sender
-    uint64_t incomplete = 0;      // messages given up with fragments missing
-    uint64_t send_failures = 0;   // datagrams the network refused to take (link down, no route)
-    uint64_t sessions_opened = 0; // peers (re)established through the handshake
-    uint64_t unverified = 0;      // authentic datagrams of a session not established yet
-    uint64_t ignored = 0;         // welcomes meant for other processes
+    uint64_t duplicates = 0;       // a datagram repeated by the network (dropped)
+    uint64_t reordered = 0;        // accepted after a later datagram of the same sender
+    uint64_t incomplete = 0;       // messages given up with fragments missing
+    uint64_t send_failures = 0;    // datagrams the network refused to take (link down, no route)
+    uint64_t sessions_opened = 0;  // peers (re)established through the handshake
+    uint64_t unverified = 0;       // authentic datagrams of a session not established yet
+    uint64_t ignored = 0;          // welcomes meant for other processes
     uint64_t total_rejected() const;
     uint64_t rejected_for(RejectReason r) const { return rejected[static_cast<size_t>(r)]; }
     // The kinds an operator asks about: forged = failed authentication; foreign = other
@@ -47,7 +47,7 @@ struct ReceivedMessage {
     // false: authentic, but from a session not established yet (see SessionGuard); the payload is
     // only there for single-datagram messages. Never act on it beyond the handshake.
     bool verified = true;
-    bool opened = false;  // this message established its sender's (new) session
+    bool opened = false;      // this message established its sender's (new) session
     uint64_t to_session = 0;  // the session of ours it was addressed to (0: anyone)
 };
 

@@ -17,10 +17,10 @@ namespace cupola {
 namespace {
 
 constexpr double kHour = 3600.0;
-constexpr double kScanStep_s = 3.0 * kHour;              // new/full moon scan step
-constexpr double kScanSpan_s = 2.0 * 365.25 * 86400.0;   // give up after two years
-constexpr double kPeakWindow_s = 6.0 * kHour;            // greatest eclipse within this of syzygy
-constexpr double kEclipseLimit_rad = 1.7 * ERFA_DD2R;    // no eclipse of either kind beyond this
+constexpr double kScanStep_s = 3.0 * kHour;             // new/full moon scan step
+constexpr double kScanSpan_s = 2.0 * 365.25 * 86400.0;  // give up after two years
+constexpr double kPeakWindow_s = 6.0 * kHour;           // greatest eclipse within this of syzygy
+constexpr double kEclipseLimit_rad = 1.7 * ERFA_DD2R;   // no eclipse of either kind beyond this
 
 struct SunMoon {
     glm::dvec3 sun, moon;  // apparent geocentric, GCRS, metres

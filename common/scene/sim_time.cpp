@@ -132,8 +132,7 @@ std::string tt_to_utc_iso(double t_tt_s) {
     if (eraD2dtf(scale, 1, u1, u2, &y, &mo, &d, hmsf) < 0)
         throw std::invalid_argument("TT " + std::to_string(t_tt_s) + " s is outside the calendar");
     char buf[48];
-    std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%01dZ", y, mo, d, hmsf[0], hmsf[1], hmsf[2],
-                  hmsf[3]);
+    std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%01dZ", y, mo, d, hmsf[0], hmsf[1], hmsf[2], hmsf[3]);
     return buf;
 }
 

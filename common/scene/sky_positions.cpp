@@ -97,9 +97,7 @@ SkyPosition sky_position(const std::string& body, double t_tt_s) {
     return s;
 }
 
-glm::dvec3 earth_heliocentric_m(double t_tt_s) {
-    return earth_state(t_tt_s / ERFA_DAYSEC).helio * kAstronomicalUnit_m;
-}
+glm::dvec3 earth_heliocentric_m(double t_tt_s) { return earth_state(t_tt_s / ERFA_DAYSEC).helio * kAstronomicalUnit_m; }
 
 glm::dmat3 gcrs_to_itrs(double t_tt_s) {
     const JulianDate tt = tt_julian_date(t_tt_s), ut1 = tt_to_ut1_jd(t_tt_s);

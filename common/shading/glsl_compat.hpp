@@ -67,19 +67,33 @@ inline float sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f);
 
 // vecN (float) combined with a double literal, as GLSL allows.
 template <glm::length_t L>
-glm::vec<L, float> operator*(const glm::vec<L, float>& v, double s) { return v * static_cast<float>(s); }
+glm::vec<L, float> operator*(const glm::vec<L, float>& v, double s) {
+    return v * static_cast<float>(s);
+}
 template <glm::length_t L>
-glm::vec<L, float> operator*(double s, const glm::vec<L, float>& v) { return v * static_cast<float>(s); }
+glm::vec<L, float> operator*(double s, const glm::vec<L, float>& v) {
+    return v * static_cast<float>(s);
+}
 template <glm::length_t L>
-glm::vec<L, float> operator/(const glm::vec<L, float>& v, double s) { return v / static_cast<float>(s); }
+glm::vec<L, float> operator/(const glm::vec<L, float>& v, double s) {
+    return v / static_cast<float>(s);
+}
 template <glm::length_t L>
-glm::vec<L, float> operator+(const glm::vec<L, float>& v, double s) { return v + static_cast<float>(s); }
+glm::vec<L, float> operator+(const glm::vec<L, float>& v, double s) {
+    return v + static_cast<float>(s);
+}
 template <glm::length_t L>
-glm::vec<L, float> operator-(const glm::vec<L, float>& v, double s) { return v - static_cast<float>(s); }
+glm::vec<L, float> operator-(const glm::vec<L, float>& v, double s) {
+    return v - static_cast<float>(s);
+}
 template <glm::length_t L>
-glm::vec<L, float> max(const glm::vec<L, float>& v, double s) { return glm::max(v, static_cast<float>(s)); }
+glm::vec<L, float> max(const glm::vec<L, float>& v, double s) {
+    return glm::max(v, static_cast<float>(s));
+}
 template <glm::length_t L>
-glm::vec<L, float> min(const glm::vec<L, float>& v, double s) { return glm::min(v, static_cast<float>(s)); }
+glm::vec<L, float> min(const glm::vec<L, float>& v, double s) {
+    return glm::min(v, static_cast<float>(s));
+}
 template <glm::length_t L>
 glm::vec<L, float> clamp(const glm::vec<L, float>& v, double lo, double hi) {
     return glm::clamp(v, static_cast<float>(lo), static_cast<float>(hi));
@@ -104,7 +118,9 @@ inline vec4 textureLod(sampler2D s, vec2 uv, double /*lod*/) {
     const float fx = std::floor(x), fy = std::floor(y);
     const float ax = x - fx, ay = y - fy;
     auto cx = [&](float i) { return static_cast<int>(std::fmin(std::fmax(i, 0.0f), static_cast<float>(t.width - 1))); };
-    auto cy = [&](float i) { return static_cast<int>(std::fmin(std::fmax(i, 0.0f), static_cast<float>(t.height - 1))); };
+    auto cy = [&](float i) {
+        return static_cast<int>(std::fmin(std::fmax(i, 0.0f), static_cast<float>(t.height - 1)));
+    };
     const int x0 = cx(fx), x1 = cx(fx + 1.0f), y0 = cy(fy), y1 = cy(fy + 1.0f);
     return glm::mix(glm::mix(t.at(x0, y0), t.at(x1, y0), ax), glm::mix(t.at(x0, y1), t.at(x1, y1), ax), ay);
 }

@@ -38,17 +38,12 @@ namespace {
 
 namespace cupola {
 // The shared files in the order a shader needs them prepended (after its #version line).
-inline const char* const kSharedShadingFiles[] = {"shared/atmosphere_types.glsl", "shared/eclipse_types.glsl", "shared/glare_types.glsl", "shared/constants.glsl", "shared/limb_darkening.glsl",
-                                                  "shared/star_psf.glsl", "shared/glare_psf.glsl", "shared/star_color.glsl",
-                                                  "shared/sphere_view.glsl",
-                                                  "shared/channel_ownership.glsl",
-                                                  "shared/eclipse_shadow.glsl",
-                                                  "shared/eclipse_casters.glsl",
-                                                  "shared/atmosphere_params.glsl",
-                                                  "shared/atmosphere_geometry.glsl",
-                                                  "shared/atmosphere_lut_mapping.glsl",
-                                                  "shared/atmosphere_tables.glsl",
-                                                  "shared/atmosphere_sky.glsl",
-                                                  "shared/atmosphere_analytic.glsl",
-                                                  "shared/atmosphere_color.glsl"};
+inline const char* const kSharedShadingFiles[] = {
+    "shared/atmosphere_types.glsl",  "shared/eclipse_types.glsl",       "shared/glare_types.glsl",
+    "shared/constants.glsl",         "shared/limb_darkening.glsl",      "shared/star_psf.glsl",
+    "shared/glare_psf.glsl",         "shared/star_color.glsl",          "shared/sphere_view.glsl",
+    "shared/channel_ownership.glsl", "shared/eclipse_shadow.glsl",      "shared/eclipse_casters.glsl",
+    "shared/atmosphere_params.glsl", "shared/atmosphere_geometry.glsl", "shared/atmosphere_lut_mapping.glsl",
+    "shared/atmosphere_tables.glsl", "shared/atmosphere_sky.glsl",      "shared/atmosphere_analytic.glsl",
+    "shared/atmosphere_color.glsl"};
 }  // namespace cupola

@@ -90,8 +90,6 @@ void ChildProcess::kill(int signal) {
     if (pid_ > 0 && !status_) ::kill(pid_, signal);
 }
 
-std::string executable_dir() {
-    return std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
-}
+std::string executable_dir() { return std::filesystem::read_symlink("/proc/self/exe").parent_path().string(); }
 
 }  // namespace cupola

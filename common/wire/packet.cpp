@@ -34,30 +34,48 @@ bool known_type(uint8_t t) {
 
 const char* packet_type_name(PacketType t) {
     switch (t) {
-        case PacketType::Snapshot: return "snapshot";
-        case PacketType::Quit: return "quit";
-        case PacketType::Hello: return "hello";
-        case PacketType::Heartbeat: return "heartbeat";
-        case PacketType::FrameDone: return "frame-done";
-        case PacketType::Welcome: return "welcome";
-        case PacketType::QuitAck: return "quit-ack";
+        case PacketType::Snapshot:
+            return "snapshot";
+        case PacketType::Quit:
+            return "quit";
+        case PacketType::Hello:
+            return "hello";
+        case PacketType::Heartbeat:
+            return "heartbeat";
+        case PacketType::FrameDone:
+            return "frame-done";
+        case PacketType::Welcome:
+            return "welcome";
+        case PacketType::QuitAck:
+            return "quit-ack";
     }
     return "unknown";
 }
 
 const char* reject_reason_name(RejectReason r) {
     switch (r) {
-        case RejectReason::BadMagic: return "bad magic";
-        case RejectReason::BadVersion: return "wrong protocol version";
-        case RejectReason::WrongCluster: return "wrong cluster id";
-        case RejectReason::BadLength: return "bad length";
-        case RejectReason::BadAuth: return "authentication failed";
-        case RejectReason::BadType: return "unknown packet type";
-        case RejectReason::BadFragment: return "bad fragment";
-        case RejectReason::Replayed: return "replayed";
-        case RejectReason::StaleSession: return "stale session";
-        case RejectReason::UnknownSession: return "unknown session";
-        case RejectReason::Count: break;
+        case RejectReason::BadMagic:
+            return "bad magic";
+        case RejectReason::BadVersion:
+            return "wrong protocol version";
+        case RejectReason::WrongCluster:
+            return "wrong cluster id";
+        case RejectReason::BadLength:
+            return "bad length";
+        case RejectReason::BadAuth:
+            return "authentication failed";
+        case RejectReason::BadType:
+            return "unknown packet type";
+        case RejectReason::BadFragment:
+            return "bad fragment";
+        case RejectReason::Replayed:
+            return "replayed";
+        case RejectReason::StaleSession:
+            return "stale session";
+        case RejectReason::UnknownSession:
+            return "unknown session";
+        case RejectReason::Count:
+            break;
     }
     return "?";
 }

@@ -36,13 +36,13 @@ constexpr size_t kTagSize = 32;
 constexpr size_t kMaxMessageLength = 16u << 20;  // 16 MiB
 
 enum class PacketType : uint8_t {
-    Snapshot = 1,   // master -> slaves: Snapshot (possibly fragmented)
-    Quit = 2,       // master -> slaves: stop after this frame
-    Welcome = 3,    // master -> one slave (to_session): proves the master's session is live now
-    Hello = 16,     // slave -> master: channel joins or rejoins
-    Heartbeat = 17, // slave -> master: still alive (while idle)
-    FrameDone = 18, // slave -> master: FrameReport
-    QuitAck = 19,   // slave -> master: quit received
+    Snapshot = 1,    // master -> slaves: Snapshot (possibly fragmented)
+    Quit = 2,        // master -> slaves: stop after this frame
+    Welcome = 3,     // master -> one slave (to_session): proves the master's session is live now
+    Hello = 16,      // slave -> master: channel joins or rejoins
+    Heartbeat = 17,  // slave -> master: still alive (while idle)
+    FrameDone = 18,  // slave -> master: FrameReport
+    QuitAck = 19,    // slave -> master: quit received
 };
 const char* packet_type_name(PacketType t);
 
@@ -77,7 +77,13 @@ struct Packet {
 // The first seven come from decoding one datagram; the last three from the session guard
 // (common/net/session_guard.hpp), which sees the sender's session and sequence.
 enum class RejectReason {
-    BadMagic, BadVersion, WrongCluster, BadLength, BadAuth, BadType, BadFragment,
+    BadMagic,
+    BadVersion,
+    WrongCluster,
+    BadLength,
+    BadAuth,
+    BadType,
+    BadFragment,
     Replayed,        // a sequence number of the sender's session already seen (long ago) or too old
     StaleSession,    // from, or addressed to, a session that has ended (a restart happened since)
     UnknownSession,  // from a session not (yet) established by the Hello/Welcome handshake

@@ -10,9 +10,9 @@ namespace cupola {
 // Hello, Heartbeat and QuitAck carry this.
 struct HelloMessage {
     uint16_t channel = 0;
-    uint32_t process_id = 0;   // for the operator's log
-    bool has_frame = false;    // this process has rendered a frame...
-    uint64_t last_frame = 0;   // ...and this was the last (a restarted master resumes after it)
+    uint32_t process_id = 0;  // for the operator's log
+    bool has_frame = false;   // this process has rendered a frame...
+    uint64_t last_frame = 0;  // ...and this was the last (a restarted master resumes after it)
 };
 
 // master -> one slave process (addressed by to_session in the header).
@@ -30,7 +30,7 @@ struct GlareMeasurement {
     static constexpr int kWedges = 8;
     uint16_t body = 0xFFFF;  // as GlareSource: body id or catalogue star
     uint32_t star = 0;
-    uint64_t frame = 0;      // the frame whose render the queries ran in
+    uint64_t frame = 0;  // the frame whose render the queries ran in
     float total_sr = 0.0f;
     float visible_sr[kWedges] = {};
     float visible_total_sr() const {
@@ -49,7 +49,7 @@ struct FrameReport {
     float write_ms = 0.0f;
     uint64_t packets_rejected = 0;  // this slave's totals so far
     uint64_t snapshots_missed = 0;
-    uint64_t snapshot_received_ns = 0;  // CLOCK_MONOTONIC when the whole snapshot arrived (one-host latency)
+    uint64_t snapshot_received_ns = 0;    // CLOCK_MONOTONIC when the whole snapshot arrived (one-host latency)
     std::vector<GlareMeasurement> glare;  // this frame's (or, if the GPU was late, an earlier frame's) queries
 };
 

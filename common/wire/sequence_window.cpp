@@ -28,18 +28,21 @@ SequenceWindow::Verdict SequenceWindow::check(uint32_t sequence, uint64_t now_ns
     }
     if (-ahead >= static_cast<int64_t>(kSize)) return Verdict::Replayed;  // older than the window
     const uint32_t slot = sequence % kSize;
-    if (seen_.test(slot))
-        return now_ns - seen_at_[slot] < horizon_ns_ ? Verdict::Duplicate : Verdict::Replayed;
+    if (seen_.test(slot)) return now_ns - seen_at_[slot] < horizon_ns_ ? Verdict::Duplicate : Verdict::Replayed;
     mark(sequence, now_ns);
     return Verdict::Reordered;
 }
 
 const char* sequence_verdict_name(SequenceWindow::Verdict v) {
     switch (v) {
-        case SequenceWindow::Verdict::Fresh: return "fresh";
-        case SequenceWindow::Verdict::Reordered: return "reordered";
-        case SequenceWindow::Verdict::Duplicate: return "duplicate";
-        case SequenceWindow::Verdict::Replayed: return "replayed";
+        case SequenceWindow::Verdict::Fresh:
+            return "fresh";
+        case SequenceWindow::Verdict::Reordered:
+            return "reordered";
+        case SequenceWindow::Verdict::Duplicate:
+            return "duplicate";
+        case SequenceWindow::Verdict::Replayed:
+            return "replayed";
     }
     return "?";
 }

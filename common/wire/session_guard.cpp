@@ -32,10 +32,18 @@ GuardVerdict SessionGuard::check(const PacketHeader& h, uint64_t now_ns) {
     Peer& peer = peers_[h.sender];
     auto sequence = [&](GuardVerdict::Kind accepted) {
         switch (peer.window.check(h.sequence, now_ns)) {
-            case SequenceWindow::Verdict::Fresh: v.kind = accepted; return v;
-            case SequenceWindow::Verdict::Reordered: v.kind = accepted; v.reordered = true; return v;
-            case SequenceWindow::Verdict::Duplicate: v.kind = GuardVerdict::Duplicate; return v;
-            case SequenceWindow::Verdict::Replayed: break;
+            case SequenceWindow::Verdict::Fresh:
+                v.kind = accepted;
+                return v;
+            case SequenceWindow::Verdict::Reordered:
+                v.kind = accepted;
+                v.reordered = true;
+                return v;
+            case SequenceWindow::Verdict::Duplicate:
+                v.kind = GuardVerdict::Duplicate;
+                return v;
+            case SequenceWindow::Verdict::Replayed:
+                break;
         }
         return reject(RejectReason::Replayed);
     };
@@ -51,9 +59,14 @@ GuardVerdict SessionGuard::check(const PacketHeader& h, uint64_t now_ns) {
             peer.session = h.session;
             peer.window = SequenceWindow();
             return sequence(GuardVerdict::Opened);
-        case SessionOpen::Unverified: v.kind = GuardVerdict::Unverified; return v;
-        case SessionOpen::Ignore: v.kind = GuardVerdict::Ignored; return v;
-        case SessionOpen::Reject: break;
+        case SessionOpen::Unverified:
+            v.kind = GuardVerdict::Unverified;
+            return v;
+        case SessionOpen::Ignore:
+            v.kind = GuardVerdict::Ignored;
+            return v;
+        case SessionOpen::Reject:
+            break;
     }
     return reject(RejectReason::UnknownSession);
 }

@@ -129,7 +129,8 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
         g.body = r.u16("glare.body");
         g.star = r.u32("glare.star");
         g.direction = get_vec3(r, "glare.direction");
-        if (std::abs(glm::length(g.direction) - 1.0f) > 1e-4f) throw WireError("field 'glare.direction' is not a unit vector");
+        if (std::abs(glm::length(g.direction) - 1.0f) > 1e-4f)
+            throw WireError("field 'glare.direction' is not a unit vector");
         g.angular_radius = finite_f(r, "glare.angular_radius");
         if (g.angular_radius < 0.0f || g.angular_radius > 1.6f)
             throw WireError("field 'glare.angular_radius' must lie in [0, pi/2]");

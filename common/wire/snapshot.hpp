@@ -21,7 +21,7 @@ struct BodyState {
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;       // effect switches (bits 0..2: eclipse shadow mode)
+    uint32_t flags = 0;        // effect switches (bits 0..2: eclipse shadow mode)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     bool operator==(const RenderSettings&) const = default;
 };
@@ -37,15 +37,15 @@ enum class GlareOrigin : uint8_t {
 // draws the glare from these values, including channels where the source is out of view.
 struct GlareSource {
     static constexpr uint16_t kCatalogStar = 0xFFFF;
-    uint16_t body = kCatalogStar;   // scene body id, or kCatalogStar
-    uint32_t star = 0;              // catalogue index when body == kCatalogStar
+    uint16_t body = kCatalogStar;            // scene body id, or kCatalogStar
+    uint32_t star = 0;                       // catalogue index when body == kCatalogStar
     glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, world frame, camera to the source's centre
-    float angular_radius = 0.0f;    // radians (0: a point)
-    glm::vec3 irradiance{0.0f};     // rgb, scene units x sr at the camera (after any atmosphere)
-    float visible_fraction = 1.0f;  // cluster-wide
-    glm::vec3 centroid_offset{0.0f};  // world frame, radians: centre -> centroid of the visible part
+    float angular_radius = 0.0f;             // radians (0: a point)
+    glm::vec3 irradiance{0.0f};              // rgb, scene units x sr at the camera (after any atmosphere)
+    float visible_fraction = 1.0f;           // cluster-wide
+    glm::vec3 centroid_offset{0.0f};         // world frame, radians: centre -> centroid of the visible part
     GlareOrigin origin = GlareOrigin::Analytic;
-    uint64_t measured_frame = 0;    // frame whose queries gave visible_fraction (when Measured)
+    uint64_t measured_frame = 0;  // frame whose queries gave visible_fraction (when Measured)
     bool operator==(const GlareSource&) const = default;
     bool same_source(const GlareSource& o) const { return body == o.body && star == o.star; }
 };

@@ -13,7 +13,6 @@ namespace cupola {
 
 namespace {
 
-
 double parse_number(const std::string& word, const std::string& what) {
     try {
         size_t used = 0;
@@ -45,9 +44,11 @@ const std::string& control_help() {
 }
 
 ControlCommand parse_control_line(const std::string& line) {
-    if (line.size() > 1024) throw ControlError("line too long (" + std::to_string(line.size()) + " bytes, at most 1024)");
+    if (line.size() > 1024)
+        throw ControlError("line too long (" + std::to_string(line.size()) + " bytes, at most 1024)");
     for (unsigned char c : line)
-        if (c < 0x20 && c != '\t' && c != '\r') throw ControlError("control character " + std::to_string(c) + " in the line");
+        if (c < 0x20 && c != '\t' && c != '\r')
+            throw ControlError("control character " + std::to_string(c) + " in the line");
     std::istringstream in(line);
     std::vector<std::string> w;
     for (std::string word; in >> word;) w.push_back(word);
@@ -111,7 +112,8 @@ ControlCommand parse_control_line(const std::string& line) {
             if (c.value != "show") {
                 const auto& n = shadow_mode_names();
                 if (std::find(n.begin(), n.end(), c.value) == n.end())
-                    throw ControlError("set shadow_mode: \"" + w[2] + "\" is not one of exact, fast, lut, illustrative, off, show");
+                    throw ControlError("set shadow_mode: \"" + w[2] +
+                                       "\" is not one of exact, fast, lut, illustrative, off, show");
             }
         } else if (c.setting == "exposure") {
             if (c.value != "auto" && c.value != "show") {

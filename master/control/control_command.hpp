@@ -31,16 +31,16 @@ enum class ControlVerb { Goto, Mode, TimeRate, TimeSet, Play, Pause, Resume, Sto
 
 struct ControlCommand {
     ControlVerb verb = ControlVerb::Help;
-    std::string body;                // goto, mode (optional): as typed
-    std::optional<double> seconds;   // goto: flight duration
-    std::string nav_mode;            // mode: orbit | fly | walk
-    double rate = 1.0;               // time rate
-    double sim_time_s = 0.0;         // time set: seconds since J2000 TT
-    std::string utc;                 // time set: as typed
-    std::string show_file;           // play: as typed ("" = resume)
-    std::string setting;             // set: shadow_mode | exposure | star_limit
-    std::string value;               // set: the value as typed (lower case)
-    std::optional<double> number;    // set exposure / star_limit: the value when it is a number
+    std::string body;               // goto, mode (optional): as typed
+    std::optional<double> seconds;  // goto: flight duration
+    std::string nav_mode;           // mode: orbit | fly | walk
+    double rate = 1.0;              // time rate
+    double sim_time_s = 0.0;        // time set: seconds since J2000 TT
+    std::string utc;                // time set: as typed
+    std::string show_file;          // play: as typed ("" = resume)
+    std::string setting;            // set: shadow_mode | exposure | star_limit
+    std::string value;              // set: the value as typed (lower case)
+    std::optional<double> number;   // set exposure / star_limit: the value when it is a number
 };
 
 // Parses one line (without its newline). Throws ControlError on anything else.

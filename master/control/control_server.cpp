@@ -33,7 +33,8 @@ sockaddr_un socket_address(const std::string& path) {
 }  // namespace
 
 ControlServer::ControlServer(const std::string& path) : path_(path) {
-    if (pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw std::runtime_error("control: pipe: " + std::string(std::strerror(errno)));
+    if (pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0)
+        throw std::runtime_error("control: pipe: " + std::string(std::strerror(errno)));
     try {
         open_listener(path);
     } catch (...) {
@@ -49,7 +50,7 @@ void ControlServer::open_listener(const std::string& path) {
         clients_.push_back({next_id_++, STDIN_FILENO, STDOUT_FILENO, true});
     } else {
         const sockaddr_un addr = socket_address(path);
-        struct stat st{};
+        struct stat st {};
         if (lstat(path.c_str(), &st) == 0) {
             if (!S_ISSOCK(st.st_mode))
                 throw std::runtime_error("control socket \"" + path + "\": a file that is not a socket is in the way");
@@ -62,7 +63,8 @@ void ControlServer::open_listener(const std::string& path) {
         }
         listen_fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
         if (listen_fd_ < 0) throw std::runtime_error("control socket: " + std::string(std::strerror(errno)));
-        if (bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 || listen(listen_fd_, 8) != 0) {
+        if (bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 ||
+            listen(listen_fd_, 8) != 0) {
             const std::string why = std::strerror(errno);
             close(listen_fd_);
             throw std::runtime_error("control socket \"" + path + "\": cannot listen: " + why);
@@ -175,8 +177,10 @@ void ControlServer::loop() {
             if (idx == clients_.size()) continue;
             if (n <= 0) {
                 if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-                if (clients_[idx].outstanding == 0) close_client(idx);
-                else clients_[idx].eof = true;  // answered first, then forgotten (reply())
+                if (clients_[idx].outstanding == 0)
+                    close_client(idx);
+                else
+                    clients_[idx].eof = true;  // answered first, then forgotten (reply())
                 continue;
             }
             Client& c = clients_[idx];
@@ -186,7 +190,8 @@ void ControlServer::loop() {
                     if (c.discarding) {
                         c.discarding = false;
                         ++refused_;
-                        pending_.push_back({c.id, std::string(kMaxLine + 1, 'x'), monotonic_ns()});  // answered as too long
+                        pending_.push_back(
+                            {c.id, std::string(kMaxLine + 1, 'x'), monotonic_ns()});  // answered as too long
                         ++c.outstanding;
                     } else {
                         if (!c.buffer.empty() && c.buffer.back() == '\r') c.buffer.pop_back();

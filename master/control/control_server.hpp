@@ -16,8 +16,8 @@
 namespace cupola {
 
 struct ControlRequest {
-    uint64_t client = 0;     // whom to reply to
-    std::string line;        // without the newline
+    uint64_t client = 0;       // whom to reply to
+    std::string line;          // without the newline
     uint64_t received_ns = 0;  // monotonic_ns() when the line was complete
 };
 
@@ -39,9 +39,9 @@ public:
 private:
     struct Client {
         uint64_t id;
-        int fd;           // read side
-        int out_fd;       // write side (stdout for stdin)
-        bool stdio;       // standard input / output: never closed here
+        int fd;      // read side
+        int out_fd;  // write side (stdout for stdin)
+        bool stdio;  // standard input / output: never closed here
         std::string buffer;
         bool discarding = false;  // inside an over-long line
         bool eof = false;         // no more input: kept until its pending lines are answered

@@ -41,22 +41,32 @@ std::optional<NavAxis> nav_axis_from_name(const std::string& name) {
 
 double& nav_axis(NavAxes& axes, NavAxis axis) {
     switch (axis) {
-        case NavAxis::Right: return axes.right;
-        case NavAxis::Up: return axes.up;
-        case NavAxis::Forward: return axes.forward;
-        case NavAxis::PitchUp: return axes.pitch_up;
-        case NavAxis::YawLeft: return axes.yaw_left;
-        case NavAxis::RollCcw: break;
+        case NavAxis::Right:
+            return axes.right;
+        case NavAxis::Up:
+            return axes.up;
+        case NavAxis::Forward:
+            return axes.forward;
+        case NavAxis::PitchUp:
+            return axes.pitch_up;
+        case NavAxis::YawLeft:
+            return axes.yaw_left;
+        case NavAxis::RollCcw:
+            break;
     }
     return axes.roll_ccw;
 }
 
 const char* report_verdict_name(ReportVerdict v) {
     switch (v) {
-        case ReportVerdict::Applied: return "applied";
-        case ReportVerdict::Ignored: return "ignored";
-        case ReportVerdict::TooShort: return "too short";
-        case ReportVerdict::UnknownId: break;
+        case ReportVerdict::Applied:
+            return "applied";
+        case ReportVerdict::Ignored:
+            return "ignored";
+        case ReportVerdict::TooShort:
+            return "too short";
+        case ReportVerdict::UnknownId:
+            break;
     }
     return "unknown report id";
 }

@@ -23,7 +23,8 @@ public:
         if (samples_.empty()) return 0.0;
         std::vector<double> s = samples_;
         std::sort(s.begin(), s.end());
-        const size_t i = std::min(s.size() - 1, static_cast<size_t>(p / 100.0 * static_cast<double>(s.size() - 1) + 0.5));
+        const size_t i =
+            std::min(s.size() - 1, static_cast<size_t>(p / 100.0 * static_cast<double>(s.size() - 1) + 0.5));
         return s[i];
     }
     std::string summary() const {

@@ -23,11 +23,11 @@ struct NavAxes {
 
 struct NavSample {
     NavAxes axes;
-    uint32_t buttons = 0;       // bit i: button i held
-    bool connected = false;     // false: no device (unplugged or never found); axes are then 0
-    uint64_t report_ns = 0;     // monotonic_ns() when the newest report in this sample arrived (0: none)
-    uint64_t reports = 0;       // reports folded into this sample since the device was opened
-    std::string device;         // model name from the device table ("" when none)
+    uint32_t buttons = 0;    // bit i: button i held
+    bool connected = false;  // false: no device (unplugged or never found); axes are then 0
+    uint64_t report_ns = 0;  // monotonic_ns() when the newest report in this sample arrived (0: none)
+    uint64_t reports = 0;    // reports folded into this sample since the device was opened
+    std::string device;      // model name from the device table ("" when none)
 };
 
 }  // namespace cupola

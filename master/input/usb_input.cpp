@@ -418,11 +418,15 @@ void LIBUSB_CALL UsbInput::Impl::on_transfer(libusb_transfer* t) {
             self.on_report(d, *t);
             self.resubmit(d);
             return;
-        case LIBUSB_TRANSFER_NO_DEVICE: self.begin_close(d, "unplugged"); return;
+        case LIBUSB_TRANSFER_NO_DEVICE:
+            self.begin_close(d, "unplugged");
+            return;
         case LIBUSB_TRANSFER_TIMED_OUT:  // no timeout is set; harmless
             self.resubmit(d);
             return;
-        case LIBUSB_TRANSFER_CANCELLED: self.begin_close(d, "transfer cancelled"); return;
+        case LIBUSB_TRANSFER_CANCELLED:
+            self.begin_close(d, "transfer cancelled");
+            return;
         default:  // ERROR, STALL, OVERFLOW
             self.bump(&UsbInputCounters::transfer_errors);
             if (++d.consecutive_errors >= 20) {
@@ -466,8 +470,10 @@ void UsbInput::Impl::finish_closing(bool force) {
         if (d.claimed) libusb_release_interface(d.handle, d.interface_number);  // reattaches the kernel driver
         libusb_close(d.handle);  // also drops a transfer that never came back
         // libusb forbids freeing a transfer still in flight: one that never came back is leaked.
-        if (!d.in_flight) libusb_free_transfer(d.transfer);
-        else spdlog::warn("usb input: {}: a transfer did not come back after cancel; left allocated", d.key);
+        if (!d.in_flight)
+            libusb_free_transfer(d.transfer);
+        else
+            spdlog::warn("usb input: {}: a transfer did not come back after cancel; left allocated", d.key);
         if (d.own_fd >= 0) ::close(d.own_fd);
         bump(&UsbInputCounters::devices_closed);
         spdlog::info("usb input: released {} \"{}\" ({})", d.model->name, d.key, d.close_reason);

@@ -14,10 +14,10 @@
 namespace cupola {
 
 struct NavBody {
-    uint16_t id = 0;               // SceneConfig::bodies index (BodyState::id)
+    uint16_t id = 0;  // SceneConfig::bodies index (BodyState::id)
     std::string name;
     double radius_m = 1.0;
-    glm::dvec3 position_m{0.0};    // centre, world frame (metres, origin at the Sun)
+    glm::dvec3 position_m{0.0};                  // centre, world frame (metres, origin at the Sun)
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  // body frame -> world; body z = north pole
 };
 

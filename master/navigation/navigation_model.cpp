@@ -10,7 +10,7 @@ namespace cupola {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kMaxDistance_m = 1.0e18;            // about 100 light years: nothing flies farther
+constexpr double kMaxDistance_m = 1.0e18;             // about 100 light years: nothing flies farther
 constexpr double kMaxPitch_rad = 89.0 * kPi / 180.0;  // surface walk: look up/down at most this
 constexpr int kFlightSamples = 256;                   // samples when checking a flight path is clear
 
@@ -198,9 +198,12 @@ glm::dvec3 NavFlightPath::offset_at(double u) const {
 
 const char* nav_mode_name(NavMode m) {
     switch (m) {
-        case NavMode::Orbit: return "orbit";
-        case NavMode::FreeFly: return "free_fly";
-        case NavMode::SurfaceWalk: return "surface_walk";
+        case NavMode::Orbit:
+            return "orbit";
+        case NavMode::FreeFly:
+            return "free_fly";
+        case NavMode::SurfaceWalk:
+            return "surface_walk";
     }
     return "?";
 }
@@ -253,8 +256,10 @@ NavigationModel::Relative NavigationModel::flight_pose(const std::vector<NavBody
 NavigationModel::Relative NavigationModel::relative_pose(const std::vector<NavBody>& bodies) const {
     if (flight_) return flight_pose(bodies);
     switch (mode_) {
-        case NavMode::Orbit: return {orientation_ * glm::dvec3(0.0, 0.0, distance_m_), orientation_};
-        case NavMode::FreeFly: return {offset_, orientation_};
+        case NavMode::Orbit:
+            return {orientation_ * glm::dvec3(0.0, 0.0, distance_m_), orientation_};
+        case NavMode::FreeFly:
+            return {offset_, orientation_};
         case NavMode::SurfaceWalk: {
             const NavBody& b = anchor_body(bodies);
             const glm::dquat walker_world = clean_orientation(b.orientation) * walker_;
@@ -320,8 +325,7 @@ void NavigationModel::enter_orbit(const Relative& r, const NavBody& target, cons
     mode_ = NavMode::Orbit;
 }
 
-void NavigationModel::enter_surface_walk(const Relative& r, const NavBody& target,
-                                         const std::vector<NavBody>& bodies) {
+void NavigationModel::enter_surface_walk(const Relative& r, const NavBody& target, const std::vector<NavBody>& bodies) {
     const glm::dvec3 from_target = r.offset - (target.position_m - anchor_body(bodies).position_m);
     const glm::dquat to_body = glm::conjugate(clean_orientation(target.orientation));
     const glm::dquat q = clean_orientation(r.orientation);
@@ -377,9 +381,15 @@ void NavigationModel::set_mode(NavMode m, const std::vector<NavBody>& bodies, st
     anchor_seen_ = anchor_body(bodies);
     const NavBody t = chosen ? *chosen : anchor_seen_;
     switch (m) {
-        case NavMode::Orbit: enter_orbit(r, t, bodies); break;
-        case NavMode::FreeFly: enter_free_fly(r, bodies); break;
-        case NavMode::SurfaceWalk: enter_surface_walk(r, t, bodies); break;
+        case NavMode::Orbit:
+            enter_orbit(r, t, bodies);
+            break;
+        case NavMode::FreeFly:
+            enter_free_fly(r, bodies);
+            break;
+        case NavMode::SurfaceWalk:
+            enter_surface_walk(r, t, bodies);
+            break;
     }
 }
 
@@ -434,7 +444,8 @@ void NavigationModel::step_orbit(const NavAxes& in, double dt) {
     if (in.forward != 0.0 && dt > 0.0) {
         const double radius = anchor_seen_.radius_m;
         const double h = std::max(distance_m_ - radius, 1e-6) * std::exp(-tuning_.speed_per_altitude * in.forward * dt);
-        distance_m_ = radius + std::clamp(std::isfinite(h) ? h : kMaxDistance_m, tuning_.min_altitude_m, kMaxDistance_m);
+        distance_m_ =
+            radius + std::clamp(std::isfinite(h) ? h : kMaxDistance_m, tuning_.min_altitude_m, kMaxDistance_m);
     }
 }
 
@@ -477,7 +488,8 @@ void NavigationModel::step_surface_walk(const NavAxes& in, double dt) {
         const double h = eye_height_m_ + in.up * speed * dt;
         eye_height_m_ = std::clamp(std::isfinite(h) ? h : kMaxDistance_m, tuning_.min_altitude_m, kMaxDistance_m);
     }
-    if (in.pitch_up * turn != 0.0) look_pitch_rad_ = std::clamp(look_pitch_rad_ + in.pitch_up * turn, -kMaxPitch_rad, kMaxPitch_rad);
+    if (in.pitch_up * turn != 0.0)
+        look_pitch_rad_ = std::clamp(look_pitch_rad_ + in.pitch_up * turn, -kMaxPitch_rad, kMaxPitch_rad);
 }
 
 CameraPose NavigationModel::step(const NavAxes& raw, double dt_s, const std::vector<NavBody>& bodies) {
@@ -494,9 +506,15 @@ CameraPose NavigationModel::step(const NavAxes& raw, double dt_s, const std::vec
     }
     const NavAxes in = clean(raw);
     switch (mode_) {
-        case NavMode::Orbit: step_orbit(in, dt); break;
-        case NavMode::FreeFly: step_free_fly(in, dt, bodies); break;
-        case NavMode::SurfaceWalk: step_surface_walk(in, dt); break;
+        case NavMode::Orbit:
+            step_orbit(in, dt);
+            break;
+        case NavMode::FreeFly:
+            step_free_fly(in, dt, bodies);
+            break;
+        case NavMode::SurfaceWalk:
+            step_surface_walk(in, dt);
+            break;
     }
     return pose(bodies);
 }

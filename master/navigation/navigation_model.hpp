@@ -37,11 +37,12 @@ const char* nav_mode_name(NavMode m);  // "orbit", "free_fly", "surface_walk"
 std::optional<NavMode> nav_mode_from_name(const std::string& name);
 
 struct NavigationTuning {
-    double speed_per_altitude = 0.5;  // full deflection moves this fraction of the altitude above the nearest surface per second
-    double min_speed_m_s = 1.0;       // floor (walking pace on a surface)
-    double turn_rate_deg_s = 45.0;    // full deflection rotation rate (free fly look / surface look / orbit roll)
-    double orbit_rate_deg_s = 30.0;   // full deflection orbit angular rate
-    double min_altitude_m = 1.5;      // never below a surface by less than this (eye height on foot)
+    double speed_per_altitude =
+        0.5;  // full deflection moves this fraction of the altitude above the nearest surface per second
+    double min_speed_m_s = 1.0;      // floor (walking pace on a surface)
+    double turn_rate_deg_s = 45.0;   // full deflection rotation rate (free fly look / surface look / orbit roll)
+    double orbit_rate_deg_s = 30.0;  // full deflection orbit angular rate
+    double min_altitude_m = 1.5;     // never below a surface by less than this (eye height on foot)
 };
 
 // The course of a go-to flight, relative to the target's centre (world axes): the direction from
@@ -50,7 +51,7 @@ struct NavigationTuning {
 // [dist_start, 1]. Turning before closing in lets a flight round a body next to its start.
 struct NavFlightPath {
     glm::dvec3 dir0{0.0, 0.0, 1.0}, dir1{0.0, 0.0, 1.0};  // unit, target -> camera
-    double log_d0 = 0.0, log_d1 = 0.0;                      // ln of the distance to the centre
+    double log_d0 = 0.0, log_d1 = 0.0;                    // ln of the distance to the centre
     double dir_end = 1.0, dist_start = 0.0;
     glm::dvec3 offset_at(double u) const;  // camera - target centre at flight fraction u
 };
@@ -111,7 +112,7 @@ private:
     struct Flight {
         double duration_s = 0.0, elapsed_s = 0.0;
         NavFlightPath path;
-        double d1 = 1.0;  // final distance to the centre
+        double d1 = 1.0;                                            // final distance to the centre
         glm::dquat q0{1.0, 0.0, 0.0, 0.0}, q1{1.0, 0.0, 0.0, 0.0};  // camera -> world, eased over the whole flight
     };
     struct Relative {       // a pose relative to the anchor's centre

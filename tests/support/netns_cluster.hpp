@@ -37,16 +37,17 @@ public:
     static constexpr int kChannels = 4;
 
     NetnsCluster(const std::string& tag, NetnsClusterOptions o)
-        : bed(tag, {"master", "relay", "s1", "s2", "s3", "attacker"}), opt(std::move(o)), dir(scratch_dir("netns_" + tag)) {
+        : bed(tag, {"master", "relay", "s1", "s2", "s3", "attacker"}),
+          opt(std::move(o)),
+          dir(scratch_dir("netns_" + tag)) {
         const bool relay = !opt.relay_faults.empty();
-        nlohmann::json overrides = {
-            {"frame_rate_hz", 0},
-            {"output", {{"formats", {"png"}}}},
-            {"network",
-             {{"interface_address", "0.0.0.0"},
-              {"master_address", bed.host("master").address},
-              {"resend_interval_ms", opt.resend_interval_ms},
-              {"max_datagram_bytes", opt.max_datagram_bytes}}}};
+        nlohmann::json overrides = {{"frame_rate_hz", 0},
+                                    {"output", {{"formats", {"png"}}}},
+                                    {"network",
+                                     {{"interface_address", "0.0.0.0"},
+                                      {"master_address", bed.host("master").address},
+                                      {"resend_interval_ms", opt.resend_interval_ms},
+                                      {"max_datagram_bytes", opt.max_datagram_bytes}}}};
         master_config = write_test_cluster(dir, kSnapshotPort, opt.width, opt.height, overrides);
         nlohmann::json c = nlohmann::json::parse(read_text(master_config));
         c["key_file"] = dir + "/cluster.key";
@@ -57,8 +58,8 @@ public:
         write_text(master_config, c.dump(2));
         // The key, readable by its owner only (strict mode would refuse anything else).
         write_text(dir + "/cluster.key", read_text(source_path("configs/keys/loopback.key")));
-        std::filesystem::permissions(dir + "/cluster.key", std::filesystem::perms::owner_read |
-                                                               std::filesystem::perms::owner_write,
+        std::filesystem::permissions(dir + "/cluster.key",
+                                     std::filesystem::perms::owner_read | std::filesystem::perms::owner_write,
                                      std::filesystem::perm_options::replace);
         slave_config = master_config;
         if (relay) {
@@ -88,31 +89,32 @@ public:
             argv.insert(argv.end(), {"--seed", "7", "--stats", dir + "/relay-" + name + ".json"});
             relays.emplace_back(argv, dir + "/relay-" + name + ".log");
         };
-        start("snapshots", {"--listen", "239.255.61.1:" + std::to_string(kSnapshotPort), "--join", "239.255.61.1",
-                            "--iface", relay, "--to", "239.255.61.2:" + std::to_string(kSnapshotPort), "--out-iface",
-                            relay});
+        start("snapshots",
+              {"--listen", "239.255.61.1:" + std::to_string(kSnapshotPort), "--join", "239.255.61.1", "--iface", relay,
+               "--to", "239.255.61.2:" + std::to_string(kSnapshotPort), "--out-iface", relay});
         start("reports", {"--listen", relay + ":" + std::to_string(kReportPort), "--to",
                           bed.host("master").address + ":" + std::to_string(kReportPort), "--out-iface", relay});
         for (const char* n : {"snapshots", "reports"}) {
             const std::string f = dir + "/relay-" + n + ".json";
             if (!wait_until([&] { return std::filesystem::exists(f); }, std::chrono::seconds(20)))
-                throw std::runtime_error("relay " + std::string(n) + " did not start: " + read_text(dir + "/relay-" + n + ".log"));
+                throw std::runtime_error("relay " + std::string(n) +
+                                         " did not start: " + read_text(dir + "/relay-" + n + ".log"));
         }
     }
 
     ChildProcess start_slave(int channel, const std::string& log_suffix = "") {
         std::vector<std::string> argv = bed.exec_prefix(host_of(channel));
-        argv.insert(argv.end(), {bin_path("cupola-slave"), "--config", slave_config, "--channel",
-                                 std::to_string(channel), "--out", out_dir(channel), "--idle-timeout", "60",
-                                 "--stats", stats_file(channel)});
+        argv.insert(argv.end(),
+                    {bin_path("cupola-slave"), "--config", slave_config, "--channel", std::to_string(channel), "--out",
+                     out_dir(channel), "--idle-timeout", "60", "--stats", stats_file(channel)});
         return ChildProcess(argv, out_dir(channel) + log_suffix + ".log", {"DISPLAY", "WAYLAND_DISPLAY"});
     }
 
     ChildProcess start_master(int frames, const std::string& name = "master") {
         std::vector<std::string> argv = bed.exec_prefix("master");
-        argv.insert(argv.end(), {bin_path("cupola-master"), "--config", master_config, "--frames",
-                                 std::to_string(frames), "--events", dir + "/" + name + ".events.jsonl", "--stats",
-                                 master_stats()});
+        argv.insert(argv.end(),
+                    {bin_path("cupola-master"), "--config", master_config, "--frames", std::to_string(frames),
+                     "--events", dir + "/" + name + ".events.jsonl", "--stats", master_stats()});
         return ChildProcess(argv, dir + "/" + name + ".log", {"DISPLAY", "WAYLAND_DISPLAY"});
     }
 
@@ -126,7 +128,9 @@ public:
     void finish(std::string& failures, std::chrono::seconds limit = std::chrono::seconds(240)) {
         if (master) {
             auto rc = master->wait_for(limit);
-            if (rc != 0) failures += "master exit " + (rc ? std::to_string(*rc) : "timeout") + ": " + read_text(dir + "/master.log") + "\n";
+            if (rc != 0)
+                failures += "master exit " + (rc ? std::to_string(*rc) : "timeout") + ": " +
+                            read_text(dir + "/master.log") + "\n";
         }
         for (size_t i = 0; i < slaves.size(); ++i) {
             auto rc = slaves[i].wait_for(std::chrono::seconds(30));

@@ -119,7 +119,8 @@ std::vector<std::string> remove_stale_netns() {
 
 std::string NetnsTestbed::unavailable_reason() {
     static const std::string reason = []() -> std::string {
-        if (::geteuid() != 0) return "network-namespace test bed needs root (euid is " + std::to_string(::geteuid()) + ")";
+        if (::geteuid() != 0)
+            return "network-namespace test bed needs root (euid is " + std::to_string(::geteuid()) + ")";
         if (find_program("ip").empty()) return "network-namespace test bed needs `ip` (iproute2), not found";
         if (find_program("nft").empty()) return "network-namespace test bed needs `nft` (nftables), not found";
         const std::string ns = "cpl" + std::to_string(::getpid()) + "-probe" + std::to_string(g_counter++);
@@ -133,8 +134,8 @@ std::string NetnsTestbed::unavailable_reason() {
         for (const auto& cmd : steps) {
             auto [rc, out] = sh(cmd);
             if (rc != 0) {
-                why = "network-namespace test bed unavailable: `" + cmd + "` failed (status " +
-                      std::to_string(rc) + "): " + trim(out);
+                why = "network-namespace test bed unavailable: `" + cmd + "` failed (status " + std::to_string(rc) +
+                      "): " + trim(out);
                 break;
             }
         }
@@ -209,8 +210,7 @@ void NetnsTestbed::destroy() noexcept {
     try {
         for (auto it = created_.rbegin(); it != created_.rend(); ++it)
             run_shell(ip_cmd("netns del " + quote(*it) + " >/dev/null 2>&1"));
-    } catch (...) {
-    }
+    } catch (...) {}
     created_.clear();
 }
 
@@ -242,14 +242,16 @@ void NetnsTestbed::set_loss(const std::string& name, double percent, int port_lo
     std::string script = "add table inet cupola_loss\ndelete table inet cupola_loss\n";
     if (percent > 0.0) {
         const long threshold = std::lround(percent * 10.0);
-        const std::string ports = port_lo == port_hi ? std::to_string(port_lo)
-                                                     : std::to_string(port_lo) + "-" + std::to_string(port_hi);
-        script += "add table inet cupola_loss\n"
-                  "add chain inet cupola_loss input { type filter hook input priority 0; policy accept; }\n"
-                  "add rule inet cupola_loss input udp dport " + ports +
-                  (threshold >= 1000 ? std::string()  // nft rejects "< 1000" (out of the numgen range)
-                                     : " numgen random mod 1000 < " + std::to_string(threshold)) +
-                  " counter drop\n";
+        const std::string ports =
+            port_lo == port_hi ? std::to_string(port_lo) : std::to_string(port_lo) + "-" + std::to_string(port_hi);
+        script +=
+            "add table inet cupola_loss\n"
+            "add chain inet cupola_loss input { type filter hook input priority 0; policy accept; }\n"
+            "add rule inet cupola_loss input udp dport " +
+            ports +
+            (threshold >= 1000 ? std::string()  // nft rejects "< 1000" (out of the numgen range)
+                               : " numgen random mod 1000 < " + std::to_string(threshold)) +
+            " counter drop\n";
     }
     must("printf '%s' " + quote(script) + " | " + netns_exec(h.ns, "nft -f -"));
 }

@@ -445,7 +445,8 @@ private:
             case USBDEVFS_CLEAR_HALT:
             case USBDEVFS_RESETEP:
             case USBDEVFS_SETINTERFACE:
-            case USBDEVFS_SETCONFIGURATION: return done(0, 0);
+            case USBDEVFS_SETCONFIGURATION:
+                return done(0, 0);
             case USBDEVFS_SUBMITURB: {
                 UMockdevIoctlData* urb_data = umockdev_ioctl_data_resolve(arg, 0, sizeof(usbdevfs_urb), nullptr);
                 auto* urb = reinterpret_cast<usbdevfs_urb*>(urb_data->data);
@@ -488,7 +489,8 @@ private:
                 schedule(s.shared_from_this(), kHoldMs);
                 return TRUE;
             }
-            default: return done(-1, ENOTTY);
+            default:
+                return done(-1, ENOTTY);
         }
     }
 

@@ -20,9 +20,9 @@
 namespace cupola::test {
 
 struct Received {
-    uint64_t ns = 0;          // monotonic_ns() at arrival
+    uint64_t ns = 0;  // monotonic_ns() at arrival
     uint64_t frame = 0;
-    glm::dvec3 offset{0.0};   // camera - reference body (WireChannel's body index)
+    glm::dvec3 offset{0.0};  // camera - reference body (WireChannel's body index)
     glm::dquat orientation{1, 0, 0, 0};
 };
 
@@ -88,7 +88,8 @@ private:
                 ep_.send(PacketType::FrameDone, s.frame, encode_frame_report(r), {master});
                 std::lock_guard lock(mutex_);
                 if (got_.empty() || got_.back().frame != s.frame)
-                    got_.push_back({now, s.frame, s.camera_position_m - s.bodies.at(body_).position_m, s.camera_orientation});
+                    got_.push_back(
+                        {now, s.frame, s.camera_position_m - s.bodies.at(body_).position_m, s.camera_orientation});
                 cv_.notify_all();
             } else if (m->message.type == PacketType::Quit && m->verified) {
                 ep_.send(PacketType::QuitAck, m->message.frame, {}, {master});

@@ -78,7 +78,8 @@ void on_signal(int sig) { g_stop_signal = sig; }
 
 in_addr parse_ipv4(const std::string& s, const std::string& what) {
     in_addr a{};
-    if (inet_pton(AF_INET, s.c_str(), &a) != 1) throw std::invalid_argument(what + ": \"" + s + "\" is not an IPv4 address");
+    if (inet_pton(AF_INET, s.c_str(), &a) != 1)
+        throw std::invalid_argument(what + ": \"" + s + "\" is not an IPv4 address");
     return a;
 }
 
@@ -139,8 +140,8 @@ private:
 
 struct Held {
     Clock::time_point release;
-    uint64_t seq;   // arrival order
-    int copy;       // 0: the datagram, 1: its duplicate
+    uint64_t seq;  // arrival order
+    int copy;      // 0: the datagram, 1: its duplicate
     Clock::time_point arrival;
     std::shared_ptr<const std::vector<uint8_t>> data;
 };
@@ -160,9 +161,15 @@ struct Stats {
 
 void write_stats(const std::string& path, const Stats& s, size_t held, uint64_t seed, bool running) {
     if (path.empty()) return;
-    const nlohmann::json j = {{"received", s.received},   {"forwarded", s.forwarded},   {"duplicated", s.duplicated},
-                              {"reordered", s.reordered}, {"dropped", s.dropped},       {"max_hold_ms", s.max_hold_ms},
-                              {"held", held},             {"send_errors", s.send_errors}, {"max_late_ms", s.max_late_ms},
+    const nlohmann::json j = {{"received", s.received},
+                              {"forwarded", s.forwarded},
+                              {"duplicated", s.duplicated},
+                              {"reordered", s.reordered},
+                              {"dropped", s.dropped},
+                              {"max_hold_ms", s.max_hold_ms},
+                              {"held", held},
+                              {"send_errors", s.send_errors},
+                              {"max_late_ms", s.max_late_ms},
                               {"seed", seed},
                               {"running", running}};
     const std::string tmp = path + ".tmp." + std::to_string(::getpid());
@@ -206,7 +213,7 @@ int run(const Options& o) {
 
     Fd in;
     if (!o.join.empty()) {
-        in.option(SOL_SOCKET, SO_REUSEADDR, 1, "SO_REUSEADDR");  // the group's port may be shared
+        in.option(SOL_SOCKET, SO_REUSEADDR, 1, "SO_REUSEADDR");          // the group's port may be shared
         in.option(IPPROTO_IP, IP_MULTICAST_ALL, 0, "IP_MULTICAST_ALL");  // only the group we joined
     }
     in.buffer(SO_RCVBUFFORCE, SO_RCVBUF, 16 << 20);
@@ -228,8 +235,10 @@ int run(const Options& o) {
         out.bind(local);
     }
     if (is_multicast(to_addr.sin_addr)) {
-        if (!o.out_iface.empty()) out.option(IPPROTO_IP, IP_MULTICAST_IF, parse_ipv4(o.out_iface, "--out-iface"), "IP_MULTICAST_IF");
-        else spdlog::warn("--to {} is multicast but no --out-iface given: the routing table picks the interface", o.to);
+        if (!o.out_iface.empty())
+            out.option(IPPROTO_IP, IP_MULTICAST_IF, parse_ipv4(o.out_iface, "--out-iface"), "IP_MULTICAST_IF");
+        else
+            spdlog::warn("--to {} is multicast but no --out-iface given: the routing table picks the interface", o.to);
         out.option(IPPROTO_IP, IP_MULTICAST_LOOP, static_cast<unsigned char>(0), "IP_MULTICAST_LOOP");
         out.option(IPPROTO_IP, IP_MULTICAST_TTL, static_cast<unsigned char>(1), "IP_MULTICAST_TTL");
     }
@@ -245,7 +254,7 @@ int run(const Options& o) {
     if (sigprocmask(SIG_BLOCK, &block, &wait_mask) != 0) fail("sigprocmask");
     sigdelset(&wait_mask, SIGTERM);
     sigdelset(&wait_mask, SIGINT);
-    struct sigaction sa{};
+    struct sigaction sa {};
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGTERM, &sa, nullptr);
@@ -372,21 +381,24 @@ int run(const Options& o) {
 
     if (g_stop_signal != 0) spdlog::info("stopping on signal {}", static_cast<int>(g_stop_signal));
     write_stats(o.stats, stats, queue.size(), seed, false);
-    spdlog::info("received {}, forwarded {}, duplicated {}, reordered {}, dropped {}, send errors {}, max hold "
-                 "{:.2f} ms; {} held copies discarded",
-                 stats.received, stats.forwarded, stats.duplicated, stats.reordered, stats.dropped,
-                 stats.send_errors, stats.max_hold_ms, queue.size());
+    spdlog::info(
+        "received {}, forwarded {}, duplicated {}, reordered {}, dropped {}, send errors {}, max hold "
+        "{:.2f} ms; {} held copies discarded",
+        stats.received, stats.forwarded, stats.duplicated, stats.reordered, stats.dropped, stats.send_errors,
+        stats.max_hold_ms, queue.size());
     return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"cupola-fault-relay: forward UDP datagrams from --listen to --to, injecting delay, jitter, "
-                 "reordering, duplication and drops (a stand-in for netem, which the test kernel lacks)"};
+    CLI::App app{
+        "cupola-fault-relay: forward UDP datagrams from --listen to --to, injecting delay, jitter, "
+        "reordering, duplication and drops (a stand-in for netem, which the test kernel lacks)"};
     Options o;
     uint64_t seed = 0;
-    app.add_option("--listen", o.listen, "address to receive on, IPv4:PORT (a multicast group with --join)")->required();
+    app.add_option("--listen", o.listen, "address to receive on, IPv4:PORT (a multicast group with --join)")
+        ->required();
     auto* join = app.add_option("--join", o.join, "multicast group to join (the --listen address, or 0.0.0.0 there)");
     auto* iface = app.add_option("--iface", o.iface, "local interface address to join the group on");
     join->needs(iface);

@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
         atm::TableCacheOptions cache;
         cache.directory = cache_dir;
         const atm::ProductionAtmosphere production(
-            body->atmosphere.parameters, atm::production_quality(model.empty() ? body->atmosphere.model : model), cache);
+            body->atmosphere.parameters, atm::production_quality(model.empty() ? body->atmosphere.model : model),
+            cache);
         atm::ReferenceSettings settings;
         settings.scattering_orders = orders;
         settings.ms_paths = paths;

@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
     app.add_option("--orders", orders, "scattering orders")->check(CLI::Range(1, 100));
     app.add_option("--paths", paths, "Monte Carlo paths per query")->check(CLI::Range(0, 100000000));
     app.add_option("--seed", seed, "Monte Carlo seed (the same for every query)");
-    app.add_option("--threads", threads, "worker threads (the output does not depend on it)")->check(CLI::Range(1, 1024));
+    app.add_option("--threads", threads, "worker threads (the output does not depend on it)")
+        ->check(CLI::Range(1, 1024));
     app.add_option("--limit", limit, "write only the first N rows (for tests)")->check(CLI::Range(0, 100000000));
     app.add_flag("-v,--verbose", verbose, "debug logging");
     CLI11_PARSE(app, argc, argv);

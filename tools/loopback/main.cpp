@@ -22,12 +22,15 @@ int main(int argc, char** argv) {
     int size = 0, timeout_s = 600;
     bool verbose = false, no_stitch = false;
     app.add_option("-c,--config", config, "cluster config (JSON)")->required()->check(CLI::ExistingFile);
-    auto* frames_opt = app.add_option("-n,--frames", frames, "number of frames (default 10; with --control: until quit)")
-                           ->check(CLI::Range(1LL, 1000000LL));
+    auto* frames_opt =
+        app.add_option("-n,--frames", frames, "number of frames (default 10; with --control: until quit)")
+            ->check(CLI::Range(1LL, 1000000LL));
     app.add_option("--control", control, "the master takes control commands on this local socket (see cupola-control)");
     app.add_option("-o,--out", out, "output folder: <channel>/ frames, dome/ domemasters, logs/")->required();
-    app.add_option("--dome-size", size, "domemaster size in pixels (default: from the config)")->check(CLI::Range(16, 16384));
-    app.add_option("--timeout", timeout_s, "give up (and stop everything) after this many seconds")->check(CLI::Range(1, 86400));
+    app.add_option("--dome-size", size, "domemaster size in pixels (default: from the config)")
+        ->check(CLI::Range(16, 16384));
+    app.add_option("--timeout", timeout_s, "give up (and stop everything) after this many seconds")
+        ->check(CLI::Range(1, 86400));
     app.add_flag("--no-stitch", no_stitch, "only render the channel frames");
     app.add_flag("-v,--verbose", verbose, "debug logging");
     CLI11_PARSE(app, argc, argv);
@@ -43,7 +46,7 @@ int main(int argc, char** argv) {
             const std::string dir = (fs::path(out) / ch.name).string();
             fs::create_directories(dir);
             std::vector<std::string> args = {bin + "/cupola-slave", "--config", cfg.file, "--channel",
-                                             std::to_string(ch.id), "--out", dir};
+                                             std::to_string(ch.id), "--out",    dir};
             if (verbose) args.push_back("--verbose");
             slaves.emplace_back(args, (fs::path(out) / "logs" / (ch.name + ".log")).string(), headless);
         }
@@ -97,7 +100,10 @@ int main(int argc, char** argv) {
         if (!report.written.empty())
             spdlog::info("wrote {} domemaster file(s) in {}; last: {}", report.written.size(), dome_dir,
                          report.written.back());
-        std::printf("domemaster: %s\n", report.written.empty() ? "(none)" : (dome_dir + "/" + cupola::frame_file_name(report.frames.back(), "png")).c_str());
+        std::printf("domemaster: %s\n",
+                    report.written.empty()
+                        ? "(none)"
+                        : (dome_dir + "/" + cupola::frame_file_name(report.frames.back(), "png")).c_str());
         return report.problems.empty() && !report.written.empty() ? 0 : 1;
     });
 }

@@ -30,8 +30,12 @@ namespace {
 constexpr const char* kUsage = "position BODY TIME | eclipse TIME | next-solar TIME | next-lunar TIME";
 
 nlohmann::json event_json(const cupola::EclipseEvent& e, bool lunar) {
-    nlohmann::json j = {{"peak_utc", cupola::tt_to_utc_iso(e.peak_tt_s)}, {"type", e.type}, {"lat_deg", e.lat_deg},
-                        {"lon_deg", e.lon_deg}, {"magnitude", e.magnitude}, {"gamma", e.gamma}};
+    nlohmann::json j = {{"peak_utc", cupola::tt_to_utc_iso(e.peak_tt_s)},
+                        {"type", e.type},
+                        {"lat_deg", e.lat_deg},
+                        {"lon_deg", e.lon_deg},
+                        {"magnitude", e.magnitude},
+                        {"gamma", e.gamma}};
     if (lunar) j["penumbral_magnitude"] = e.penumbral_magnitude;
     return j;
 }
@@ -53,8 +57,8 @@ nlohmann::json answer(const std::vector<std::string>& w) {
     if (cmd == "eclipse") {
         need(2, "TIME");
         const cupola::SolarEclipseAt e = cupola::solar_eclipse_at(cupola::utc_iso_to_j2000_seconds(w[1]));
-        return {{"lat_deg", e.lat_deg}, {"lon_deg", e.lon_deg}, {"type", e.type},
-                {"magnitude", e.magnitude}, {"gamma", e.gamma}, {"central", e.central}};
+        return {{"lat_deg", e.lat_deg},     {"lon_deg", e.lon_deg}, {"type", e.type},
+                {"magnitude", e.magnitude}, {"gamma", e.gamma},     {"central", e.central}};
     }
     if (cmd == "next-solar" || cmd == "next-lunar") {
         need(2, "TIME");

@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
     std::optional<uint64_t> frame;
     int size = 0;
     app.add_option("--config", config_file, "cluster config (JSON)")->required()->check(CLI::ExistingFile);
-    app.add_option("--in", in_dir, "run directory holding one folder per channel")->required()->check(CLI::ExistingDirectory);
+    app.add_option("--in", in_dir, "run directory holding one folder per channel")
+        ->required()
+        ->check(CLI::ExistingDirectory);
     app.add_option("--out", out_dir, "where the domemasters are written")->required();
     app.add_option("--frame", frame, "stitch only this frame index");
     app.add_option("--size", size, "domemaster size in pixels (default: the config's output.domemaster_size)")
@@ -44,8 +46,7 @@ int main(int argc, char** argv) {
         const cupola::StitchReport report = cupola::stitch_run_directory(config, in_dir, out_dir, frame, size);
         for (const auto& path : report.written) std::cout << "wrote " << path << "\n";
         for (const auto& p : report.problems) std::cerr << "cupola-stitch: problem: " << p << "\n";
-        std::cout << "stitched " << report.frames.size() << " frame(s), " << report.problems.size()
-                  << " problem(s)\n";
+        std::cout << "stitched " << report.frames.size() << " frame(s), " << report.problems.size() << " problem(s)\n";
         return report.problems.empty() ? 0 : 1;
     } catch (const std::exception& e) {
         std::cerr << "cupola-stitch: " << e.what() << "\n";
