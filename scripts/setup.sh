@@ -12,11 +12,13 @@ PACKAGES=(
   libusb-1.0-0-dev libudev-dev                 # navigation devices (master)
   umockdev libumockdev-dev                     # emulated USB devices for the navigation-device tests
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  libvalijson-dev                              # JSON Schema validation of the configs (configs/schema/)
   libsodium-dev                                # HMAC-SHA256 packet authentication, BLAKE2b hashes
   liberfa-dev                                  # time scales and Earth rotation (ERFA)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   xplanet-images                               # Earth texture
   iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
+  clang-format universal-ctags                 # source checks in ctest: formatting, function length
   clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
 )
 
