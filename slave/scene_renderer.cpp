@@ -6,19 +6,19 @@
 #include <map>
 #include <stdexcept>
 
-#include "atmosphere_pass.hpp"
-#include "body_pass.hpp"
+#include "passes/atmosphere_pass.hpp"
+#include "passes/body_pass.hpp"
 #include "eclipse/shadow_casters.hpp"
 #include "eclipse/umbra_light.hpp"
-#include "eclipse_shadow_uniforms.hpp"
-#include "gl_framebuffer.hpp"
-#include "glare_pass.hpp"
-#include "glare_probe.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
+#include "gl/gl_framebuffer.hpp"
+#include "passes/glare_pass.hpp"
+#include "passes/glare_probe.hpp"
 #include "projection/dome_frame.hpp"
 #include "scene/star_catalog.hpp"
-#include "sphere_billboard.hpp"
-#include "star_pass.hpp"
-#include "sun_pass.hpp"
+#include "passes/sphere_billboard.hpp"
+#include "passes/star_pass.hpp"
+#include "passes/sun_pass.hpp"
 
 namespace cupola {
 

@@ -3,8 +3,8 @@
 // the lookup mode, built once for the scene's Sun, and the uniforms every shadowed pass sets
 // (u_ecl: the receiver's EclipseCasters from eclipse/shadow_casters.hpp; u_eclipse_lut;
 // u_eclipse_lut_size).
-#include "gl_program.hpp"
-#include "gl_texture.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
 #include "shading/shared_shading.hpp"
 
 namespace cupola {

@@ -3,9 +3,9 @@
 // drawn as an analytic sphere on a viewpoint-oriented billboard (shaders/sun.frag,
 // shared/limb_darkening.glsl). The Moon, nearer, is drawn over it afterwards (painter's order).
 #include "config/scene_config.hpp"
-#include "gl_buffer.hpp"
-#include "gl_program.hpp"
-#include "sphere_billboard.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/sphere_billboard.hpp"
 
 namespace cupola {
 

@@ -1,4 +1,4 @@
-#include "glare_pass.hpp"
+#include "passes/glare_pass.hpp"
 
 #include <algorithm>
 #include <cmath>

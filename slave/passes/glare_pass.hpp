@@ -7,10 +7,10 @@
 // in per-channel mode (the naive comparison) only while the source's centre is in its own
 // frustum, from its own query.
 #include "config/scene_config.hpp"
-#include "gl_buffer.hpp"
-#include "gl_program.hpp"
-#include "glare_probe.hpp"
-#include "sphere_billboard.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/glare_probe.hpp"
+#include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {

@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "channel_view.hpp"
 #include "config/scene_config.hpp"
-#include "gl_buffer.hpp"
-#include "gl_program.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/channel_view.hpp"
 #include "scene/star_catalog.hpp"
 
 namespace cupola {

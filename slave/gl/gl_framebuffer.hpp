@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "gl_api.hpp"
-#include "gl_texture.hpp"
+#include "gl/gl_api.hpp"
+#include "gl/gl_texture.hpp"
 #include "image/frame_image.hpp"
 
 namespace cupola {

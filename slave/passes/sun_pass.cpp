@@ -1,4 +1,4 @@
-#include "sun_pass.hpp"
+#include "passes/sun_pass.hpp"
 
 #include <algorithm>
 

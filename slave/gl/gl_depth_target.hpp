@@ -1,7 +1,7 @@
 #pragma once
 // A depth-only offscreen target (RAII): one DEPTH_COMPONENT32F texture, no colour. What the
 // glare probe draws its occluders into before it runs its occlusion queries.
-#include "gl_api.hpp"
+#include "gl/gl_api.hpp"
 
 namespace cupola {
 

@@ -1,10 +1,10 @@
-#include "body_pass.hpp"
+#include "passes/body_pass.hpp"
 
 #include <cmath>
 #include <numbers>
 
 #include "atmosphere/solar_scale.hpp"
-#include "body_texture.hpp"
+#include "passes/body_texture.hpp"
 
 namespace cupola {
 

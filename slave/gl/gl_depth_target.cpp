@@ -1,4 +1,4 @@
-#include "gl_depth_target.hpp"
+#include "gl/gl_depth_target.hpp"
 
 #include <stdexcept>
 #include <string>

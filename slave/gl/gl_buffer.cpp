@@ -1,4 +1,4 @@
-#include "gl_buffer.hpp"
+#include "gl/gl_buffer.hpp"
 
 namespace cupola {
 

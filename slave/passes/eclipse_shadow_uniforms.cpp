@@ -1,4 +1,4 @@
-#include "eclipse_shadow_uniforms.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
 
 #include <string>
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "gl_api.hpp"
+#include "gl/gl_api.hpp"
 
 namespace cupola {
 

@@ -1,4 +1,4 @@
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>

@@ -1,4 +1,4 @@
-#include "atmosphere_pass.hpp"
+#include "passes/atmosphere_pass.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "gl_api.hpp"
+#include "gl/gl_api.hpp"
 
 #include <cstdio>
 #include <stdexcept>

@@ -5,8 +5,8 @@
 
 #include <array>
 
-#include "channel_view.hpp"
-#include "gl_program.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/channel_view.hpp"
 
 namespace cupola {
 

@@ -13,11 +13,11 @@
 #include <optional>
 #include <vector>
 
-#include "body_pass.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "gl_depth_target.hpp"
-#include "gl_program.hpp"
+#include "gl/gl_depth_target.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/body_pass.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 

@@ -1,4 +1,4 @@
-#include "star_pass.hpp"
+#include "passes/star_pass.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,14 +15,14 @@
 #include <memory>
 
 #include "atmosphere/production_model.hpp"
-#include "body_pass.hpp"
 #include "config/scene_config.hpp"
-#include "eclipse_shadow_uniforms.hpp"
-#include "gl_buffer.hpp"
-#include "gl_program.hpp"
-#include "gl_texture.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
+#include "passes/body_pass.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/sphere_billboard.hpp"
 #include "projection/channel_frustum.hpp"
-#include "sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {

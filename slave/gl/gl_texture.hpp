@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "gl_api.hpp"
+#include "gl/gl_api.hpp"
 
 namespace cupola {
 

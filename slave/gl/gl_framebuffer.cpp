@@ -1,4 +1,4 @@
-#include "gl_framebuffer.hpp"
+#include "gl/gl_framebuffer.hpp"
 
 #include <cstring>
 #include <stdexcept>

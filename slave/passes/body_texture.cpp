@@ -1,4 +1,4 @@
-#include "body_texture.hpp"
+#include "passes/body_texture.hpp"
 
 #include <OpenImageIO/imageio.h>
 

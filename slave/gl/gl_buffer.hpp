@@ -2,7 +2,7 @@
 // A vertex array object with one interleaved float vertex buffer (RAII).
 #include <vector>
 
-#include "gl_api.hpp"
+#include "gl/gl_api.hpp"
 
 namespace cupola {
 

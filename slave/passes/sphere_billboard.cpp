@@ -1,4 +1,4 @@
-#include "sphere_billboard.hpp"
+#include "passes/sphere_billboard.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "glare_probe.hpp"
+#include "passes/glare_probe.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "glare/glare_frame.hpp"
+#include "passes/sphere_billboard.hpp"
 #include "projection/dome_frame.hpp"
 #include "scene/snapshot_bodies.hpp"
 #include "shading/shared_shading.hpp"
-#include "sphere_billboard.hpp"
 
 namespace cupola {
 

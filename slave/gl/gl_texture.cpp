@@ -1,4 +1,4 @@
-#include "gl_texture.hpp"
+#include "gl/gl_texture.hpp"
 
 #include <stdexcept>
 #include <string>

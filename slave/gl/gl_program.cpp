@@ -1,4 +1,4 @@
-#include "gl_program.hpp"
+#include "gl/gl_program.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 

@@ -8,11 +8,11 @@
 #include <memory>
 
 #include "config/scene_config.hpp"
-#include "eclipse_shadow_uniforms.hpp"
-#include "gl_buffer.hpp"
-#include "gl_program.hpp"
-#include "gl_texture.hpp"
-#include "sphere_billboard.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
