@@ -1,5 +1,7 @@
 #include "passes/atmosphere_pass.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -74,7 +76,36 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
     return false;
 }
 
-AtmospherePass::AtmospherePass() : program_("fullscreen.vert", "atmosphere.frag") {}
+AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows)
+    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("fullscreen.vert", "atmosphere.frag") {}
+
+int AtmospherePass::prepare(const FrameContext& frame) {
+    frame_ = &frame;
+    layers_.clear();
+    long skipped = 0;
+    for (const FrameBody& it : frame.far_to_near) {
+        const auto atm = atmospheres_.find(it.body->id);
+        if (atm == atmospheres_.end()) continue;
+        const glm::dvec3 center = it.sphere.center_dir * it.sphere.distance_m;  // channel frame, double
+        if (sphere_outside_frustum(*frame.view.frustum, center, atm->second->top_radius_m())) {
+            ++skipped;
+            continue;
+        }
+        layers_.push_back({&it, atm->second.get()});
+    }
+    run_ += static_cast<long>(layers_.size());
+    skipped_ += skipped;
+    spdlog::debug("frame {}: atmosphere passes {} run, {} skipped (totals {} / {})", frame.snap->frame, layers_.size(),
+                  skipped, run_, skipped_);
+    return static_cast<int>(layers_.size());
+}
+
+void AtmospherePass::draw(const PassInputs& in, int step) {
+    const Layer& l = layers_.at(static_cast<size_t>(step));
+    const FrameContext& f = *frame_;
+    draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.color, *in.geometry, shadows_,
+         f.casters_of(l.body->body->id));
+}
 
 void AtmospherePass::draw(const ChannelView& view, const GpuAtmosphere& atm, const BodyState& state,
                           const SphereView& sphere, const SunLight& sun, const GlTexture& scene,

@@ -12,18 +12,11 @@
 #include "gl/gl_program.hpp"
 #include "gl/gl_texture.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/frame_context.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
-
-struct SunLight {
-    bool present = false;
-    glm::dvec3 position_m{0.0};
-    double radius_m = 0.0;
-    double radiance = 0.0;  // disc centre
-    double limb_u = 0.0;
-};
 
 // Irradiance (scene units) at distance d_m from the light's centre.
 double sun_irradiance(const SunLight& sun, double d_m);

@@ -12,7 +12,15 @@ namespace {
 double luminance(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 }  // namespace
 
-GlarePass::GlarePass(const SceneConfig& scene) : scene_(&scene), program_("sphere.vert", "glare.frag") {}
+GlarePass::GlarePass(const SceneConfig& scene, const GlareProbe& probe)
+    : scene_(&scene), probe_(probe), program_("sphere.vert", "glare.frag") {}
+
+int GlarePass::prepare(const FrameContext& frame) {
+    frame_ = &frame;
+    return frame.snap->glare.empty() ? 0 : 1;
+}
+
+void GlarePass::draw(const PassInputs&, int) { draw(frame_->view, *frame_->snap, probe_); }
 
 double GlarePass::extent_rad(const GlareSource& source, double exposure) const {
     const GlareConfig& c = scene_->glare;

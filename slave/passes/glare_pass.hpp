@@ -10,16 +10,24 @@
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
 #include "passes/glare_probe.hpp"
+#include "passes/render_pass.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
 
-class GlarePass {
+class GlarePass : public RenderPass {
 public:
-    explicit GlarePass(const SceneConfig& scene);
+    // probe: this channel's measurements, for the per-channel mode.
+    GlarePass(const SceneConfig& scene, const GlareProbe& probe);
     // Draws into the bound colour target (attachment 0).
     void draw(const ChannelView& view, const Snapshot& snap, const GlareProbe& probe);
+
+    // In the pass list: additive, colour only, when the snapshot has glare sources.
+    std::string name() const override { return "glare"; }
+    PassIo io() const override { return {.writes_color = true}; }
+    int prepare(const FrameContext& frame) override;
+    void draw(const PassInputs& in, int step) override;
 
     // The angle beyond which a source's glare stays below a quarter of glare.min_display on the
     // dome (at most glare.extent_deg): fainter sources get smaller billboards.
@@ -29,6 +37,8 @@ public:
 
 private:
     const SceneConfig* scene_;
+    const GlareProbe& probe_;
+    const FrameContext* frame_ = nullptr;
     GlProgram program_;
     GlEmptyVertexArray vao_;
     long drawn_ = 0;

@@ -1,6 +1,6 @@
 #pragma once
-// Glare visibility measured where it is rendered (seed 000, section 3.1.1, render bins: occluders
-// -> query -> atmosphere and other non-occluders -> glare). For each glare source of the
+// Glare visibility measured where it is rendered, in the pass list between the occluders and
+// what does not occlude (occluders -> query -> atmosphere -> glare). For each glare source of the
 // snapshot whose disc may reach this channel, the probe draws the occluders (the bodies, depth
 // only, by true distance) into a small view centred on the source, then counts the source's
 // disc with two kinds of occlusion query: without depth test (the total) and with it, per wedge
@@ -18,6 +18,7 @@
 #include "gl/gl_depth_target.hpp"
 #include "gl/gl_program.hpp"
 #include "passes/body_pass.hpp"
+#include "passes/render_pass.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 
@@ -29,13 +30,23 @@ struct GlareProbeCounts {
     uint64_t sets_dropped_late = 0;  // still running when their slot was needed again
 };
 
-class GlareProbe {
+class GlareProbe : public RenderPass {
 public:
     static constexpr int kMaxChannels = 32;       // ownership uniforms in glare_query.frag
     static constexpr double kMinRadius = 2.9e-4;  // a point source is probed as a 1-arcminute disc
 
-    GlareProbe(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene);
-    ~GlareProbe();
+    // bodies, shadows: what the occluders are drawn with (the painter pass's).
+    GlareProbe(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene, BodyPass& bodies,
+               const EclipseShadowUniforms& shadows);
+    ~GlareProbe() override;
+
+    // In the pass list: draws into its own depth target, none of the frame's; measures when the
+    // snapshot has glare sources and collects after the frame.
+    std::string name() const override { return "glare probe"; }
+    PassIo io() const override { return {}; }
+    int prepare(const FrameContext& frame) override;
+    void draw(const PassInputs& in, int step) override;
+    void frame_finished() override { collect(); }
 
     // Issues the queries for the snapshot's glare sources (after the occluders of the frame's own
     // render, before the atmosphere). Leaves GL with depth test off and depth writes on.
@@ -54,6 +65,13 @@ public:
 
 private:
     struct Set;
+    struct View;
+    Set& claim_set(uint64_t frame);
+    double near_distance_m(const Snapshot& snap, const GlareSource& src) const;
+    void draw_occluders(const Snapshot& snap, const GlareSource& src, const View& probe, double source_near_m,
+                        BodyPass& bodies, const SunLight& light, const EclipseShadowUniforms& shadows);
+    void issue_queries(const Snapshot& snap, const GlareSource& src, const View& probe, double source_near_m,
+                       const GLuint* queries);
     void read(Set& set);
 
     int self_ = 0;
@@ -64,6 +82,9 @@ private:
     std::vector<ChannelFrustum> frusta_;
     glm::dmat3 camera_from_dome_;
     const SceneConfig* scene_;
+    BodyPass& bodies_;
+    const EclipseShadowUniforms& shadows_;
+    const FrameContext* frame_ = nullptr;
     GlDepthTarget target_;
     GlProgram query_;
     GLuint vao_ = 0;

@@ -21,6 +21,14 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     vertices_.upload(data);
 }
 
+int StarPass::prepare(const FrameContext& frame) {
+    view_ = &frame.view;
+    magnitude_limit_ = std::min<double>(config_.magnitude_limit, frame.snap->settings.star_magnitude_limit);
+    return 1;
+}
+
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_); }
+
 void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
