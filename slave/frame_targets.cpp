@@ -39,7 +39,7 @@ PassInputs FrameTargets::bind_for(const PassIo& io) {
 }
 
 void FrameTargets::drawn(const PassIo& io) {
-    if (io.reads_color && io.writes_color && !io.writes_geometry) current_ = &other();
+    if (io.reads_color && io.writes_color) current_ = &other();
 }
 
 Image FrameTargets::read() const { return current_->read(); }
