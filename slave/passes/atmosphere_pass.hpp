@@ -1,5 +1,5 @@
 #pragma once
-// Pass 4: a planet's atmosphere, deferred, over the whole channel (shaders/atmosphere.frag).
+// A planet's atmosphere, deferred, over the whole channel (shaders/atmosphere.frag).
 // Reads the scene colour and the deferred geometry the body pass wrote (reflectance, hit
 // distance), and writes a new colour target: the planet's own surface relit through the
 // atmosphere (direct Sun + sky light), everything behind the air attenuated, plus in-scatter.

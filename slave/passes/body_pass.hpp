@@ -1,6 +1,7 @@
 #pragma once
-// Pass 3: planets and moons, analytic ray-sphere on a viewpoint-oriented billboard (no mesh),
-// textured from an equirectangular image in the body frame and Lambert-lit by the scene's star:
+// Planets and moons (for PainterPass, slave/passes/painter_pass.hpp, and the glare probe's
+// occluders), analytic ray-sphere on a viewpoint-oriented billboard (no mesh), textured from an
+// equirectangular image in the body frame and Lambert-lit by the scene's star:
 //   E = pi * L_sun * (1 - u/3) * (R_sun / d_sun)^2,  L = albedo / pi * E * max(cos i, 0) * texture.
 // Colour attachment 1 receives the deferred geometry of each covered pixel for the atmosphere
 // pass: rgb = diffuse reflectance (albedo * tint * texture, linear), a = hit distance in metres.

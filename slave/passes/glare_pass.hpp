@@ -1,5 +1,5 @@
 #pragma once
-// The last pass: the glare of every source the master shares (snapshot.glare), on a
+// The glare, last in the pass list: every source the master shares (snapshot.glare), on a
 // viewpoint-oriented billboard per source -- its normal points at the shared camera position,
 // its axes are the cluster-wide glare frame (common/glare/glare_frame), its size the glare's
 // angular extent -- drawn without depth test, added to the HDR image. Every channel draws every

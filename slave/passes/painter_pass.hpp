@@ -1,5 +1,5 @@
 #pragma once
-// Passes 2 and 3: the scene's stars (SunPass) and its planets and moons (BodyPass), far to near
+// The scene's stars (SunPass) and its planets and moons (BodyPass) as one pass, far to near
 // (painter's order), into the colour and the G-buffer. Each disc is opaque and exact in angle,
 // so no depth buffer is needed between bodies; a Sun behind a planet is covered by it and a
 // planet behind the Sun by the Sun, whatever the order of the scene's bodies.
