@@ -25,7 +25,9 @@ void FrameTargets::begin_frame() {
 PassInputs FrameTargets::bind_for(const PassIo& io) {
     const GlFramebuffer* target = nullptr;
     if (io.writes_geometry) {
-        if (current_ != &a_) throw std::logic_error("the G-buffer is written after the colour was read");
+        if (current_ != &a_)
+            throw std::logic_error(
+                "frame targets: a pass writes the G-buffer after the colour moved to the second target");
         target = &scene_;
     } else if (io.writes_color) {
         target = io.reads_color ? &other() : current_;

@@ -14,6 +14,7 @@ namespace cupola {
 
 // What a pass reads and writes of the frame's targets. A pass that writes neither colour nor
 // G-buffer draws into a target of its own (the glare probe); the frame's are rebound after it.
+// A pass that writes the frame's colour or G-buffer binds no other framebuffer.
 struct PassIo {
     bool reads_color = false;      // samples the colour drawn so far (PassInputs::color)
     bool reads_geometry = false;   // samples the G-buffer: reflectance and hit distance (PassInputs::geometry)
