@@ -1,6 +1,6 @@
 #pragma once
-// The star field, first in the pass list. Sizes and brightness are angular and cluster-wide
-// (StarFieldConfig); see shaders/stars.{vert,frag} and shaders/shared/star_psf.glsl.
+// The star field. Sizes and brightness are angular and cluster-wide (StarFieldConfig);
+// see shaders/stars.{vert,frag} and shaders/shared/star_psf.glsl.
 #include <memory>
 #include <vector>
 

@@ -1,8 +1,8 @@
 #pragma once
-// A star of the scene (BodyKind::Star, the Sun; for PainterPass, slave/passes/painter_pass.hpp)
-// as a limb-darkened disc with its corona, drawn as an analytic sphere on a viewpoint-oriented
-// billboard (shaders/sun.frag, shared/limb_darkening.glsl). The Moon, nearer, is drawn over it
-// afterwards (painter's order).
+// A star of the scene (BodyKind::Star, the Sun) as a limb-darkened disc with its corona,
+// drawn as an analytic sphere on a viewpoint-oriented billboard (shaders/sun.frag,
+// shared/limb_darkening.glsl). The Moon, nearer, is drawn over it afterwards (painter's order).
+// Drawn by PainterPass (slave/passes/painter_pass.hpp).
 #include "config/scene_config.hpp"
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
