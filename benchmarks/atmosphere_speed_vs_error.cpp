@@ -20,7 +20,7 @@
 #include "atmosphere/production_accuracy.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 #include "scene_renderer.hpp"
 
 using namespace cupola;

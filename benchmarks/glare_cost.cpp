@@ -16,7 +16,7 @@
 #include "show_script.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 #include "glare/analytic_visibility.hpp"
 #include "scene_renderer.hpp"
 #include "util/cli_parse.hpp"

@@ -1,5 +1,5 @@
 #version 450 core
-// Deferred atmosphere of one planet, per pixel of the channel (slave/atmosphere_pass.hpp):
+// Deferred atmosphere of one planet, per pixel of the channel (slave/passes/atmosphere_pass.hpp):
 //   out = surface_or_background * T + in-scatter,
 // with T and the in-scatter of the production model along the view ray (ray march through the
 // tables, or the analytic fast mode) up to the ground, the top of the atmosphere, or the scene

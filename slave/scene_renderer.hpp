@@ -1,7 +1,11 @@
 #pragma once
 // Renders one channel's frustum slice of the dome for a snapshot, into offscreen RGBA32F
 // targets, and reads it back as a linear float image. Needs a current GL 4.5 context.
+// The pipeline is one ordered list of render passes (slave/passes/render_pass.hpp), built in
+// the constructor (slave/scene_renderer.cpp) and run in order every frame.
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
@@ -19,6 +23,8 @@ struct AtmosphereStats {
     long passes_skipped = 0;         // atmosphere entirely outside the frustum
 };
 
+class RenderPass;
+
 class SceneRenderer {
 public:
     SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene);
@@ -28,6 +34,13 @@ public:
     // The newest finished glare occlusion-query results (for the frame report): after render()
     // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.
     const std::vector<GlareMeasurement>& glare_measurements() const;
+
+    // The passes' names in the order they run.
+    std::vector<std::string> pass_names() const;
+    // Puts a pass into the list before the one at `position` (pass_names().size(): last).
+    // Throws std::out_of_range for a position past the end and std::logic_error (naming the
+    // passes) when the list's passes cannot share the frame's targets in the new order.
+    void insert_pass(size_t position, std::unique_ptr<RenderPass> pass);
 
 private:
     struct Impl;

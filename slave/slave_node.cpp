@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "async_frame_writer.hpp"
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"

@@ -12,10 +12,10 @@
 #include <string>
 
 #include "atmosphere/production_model.hpp"
-#include "atmosphere_pass.hpp"
+#include "passes/atmosphere_pass.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"

@@ -8,7 +8,7 @@
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "egl_context.hpp"
+#include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "scene_renderer.hpp"
 #include "support/test_support.hpp"

@@ -13,12 +13,12 @@
 #include <vector>
 
 #include "eclipse/eclipse_reference.hpp"
-#include "egl_context.hpp"
-#include "gl_api.hpp"
-#include "gl_buffer.hpp"
-#include "gl_framebuffer.hpp"
-#include "gl_program.hpp"
-#include "gl_texture.hpp"
+#include "gl/egl_context.hpp"
+#include "gl/gl_api.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_framebuffer.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
 #include "shading/shared_shading.hpp"
 
 using namespace cupola;

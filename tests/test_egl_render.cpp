@@ -6,11 +6,11 @@
 #include <cstdlib>
 #include <numbers>
 
-#include "egl_context.hpp"
-#include "gl_api.hpp"
-#include "gl_buffer.hpp"
-#include "gl_framebuffer.hpp"
-#include "gl_program.hpp"
+#include "gl/egl_context.hpp"
+#include "gl/gl_api.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_framebuffer.hpp"
+#include "gl/gl_program.hpp"
 #include "scene/star_catalog.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"

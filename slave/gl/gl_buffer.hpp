@@ -1,0 +1,41 @@
+#pragma once
+// A vertex array object with one interleaved float vertex buffer (RAII).
+#include <vector>
+
+#include "gl/gl_api.hpp"
+
+namespace cupola {
+
+class GlVertexBuffer {
+public:
+    // components: floats per attribute, in order (attribute locations 0, 1, ...).
+    explicit GlVertexBuffer(std::vector<int> components);
+    ~GlVertexBuffer();
+    GlVertexBuffer(const GlVertexBuffer&) = delete;
+    GlVertexBuffer& operator=(const GlVertexBuffer&) = delete;
+
+    // Replaces the contents; data holds whole vertices.
+    void upload(const std::vector<float>& data);
+    int vertex_count() const { return count_; }
+    void bind() const { glBindVertexArray(vao_); }
+
+private:
+    GLuint vao_ = 0, vbo_ = 0;
+    int stride_ = 0;  // floats per vertex
+    int count_ = 0;
+};
+
+// An empty vertex array, for draws whose vertices come from gl_VertexID.
+class GlEmptyVertexArray {
+public:
+    GlEmptyVertexArray() { glCreateVertexArrays(1, &vao_); }
+    ~GlEmptyVertexArray() { glDeleteVertexArrays(1, &vao_); }
+    GlEmptyVertexArray(const GlEmptyVertexArray&) = delete;
+    GlEmptyVertexArray& operator=(const GlEmptyVertexArray&) = delete;
+    void bind() const { glBindVertexArray(vao_); }
+
+private:
+    GLuint vao_ = 0;
+};
+
+}  // namespace cupola

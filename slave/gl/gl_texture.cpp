@@ -1,0 +1,46 @@
+#include "gl/gl_texture.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace cupola {
+
+namespace {
+void check_size(int width, int height) {
+    if (width <= 0 || height <= 0)
+        throw std::runtime_error("texture size " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " is not positive");
+}
+}  // namespace
+
+GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb) : width_(width), height_(height) {
+    check_size(width, height);
+    glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+    glTextureStorage2D(id_, 1, GL_RGB16F, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(id_, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
+    glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::check("texture upload");
+}
+
+GlTexture::GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter) : width_(width), height_(height) {
+    check_size(width, height);
+    glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+    glTextureStorage2D(id_, 1, GL_RGBA32F, width, height);
+    if (rgba) {
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(id_, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
+    }
+    glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::check("RGBA32F texture " + std::to_string(width) + "x" + std::to_string(height));
+}
+
+GlTexture::~GlTexture() { glDeleteTextures(1, &id_); }
+
+}  // namespace cupola

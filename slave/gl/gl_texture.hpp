@@ -1,0 +1,34 @@
+#pragma once
+// 2D float textures (RAII):
+//  - body surface maps: RGB16F, linear filtering, repeating in s (longitude), clamped in t;
+//  - RGBA32F data and render targets: clamped to the edge in both directions, linear or nearest
+//    filtering, one level (sampled with textureLod / texelFetch).
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "gl/gl_api.hpp"
+
+namespace cupola {
+
+class GlTexture {
+public:
+    // rgb: width*height*3 linear floats, row 0 first (texture coordinate t = 0).
+    GlTexture(int width, int height, const std::vector<float>& rgb);
+    // RGBA32F; rgba: width*height texels, row 0 first, or nullptr for an uninitialised render target.
+    GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter);
+    ~GlTexture();
+    GlTexture(const GlTexture&) = delete;
+    GlTexture& operator=(const GlTexture&) = delete;
+
+    void bind(GLuint unit) const { glBindTextureUnit(unit, id_); }
+    GLuint id() const { return id_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+private:
+    GLuint id_ = 0;
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace cupola

@@ -1,0 +1,47 @@
+#include "passes/body_pass.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "atmosphere/solar_scale.hpp"
+#include "passes/body_texture.hpp"
+
+namespace cupola {
+
+double sun_irradiance(const SunLight& sun, double d_m) {
+    if (!sun.present || d_m <= 0.0) return 0.0;
+    return atmosphere::sun_irradiance_scene_units(sun.radiance, sun.radius_m, sun.limb_u, d_m);
+}
+
+BodyPass::BodyPass(const SceneConfig& scene) : program_("sphere.vert", "body.frag") {
+    for (const auto& b : scene.bodies) {
+        if (b.kind == BodyKind::Star) continue;
+        const BodyImage img = load_body_image(b.texture);
+        textures_[b.id] = std::make_unique<GlTexture>(img.width, img.height, img.rgb);
+    }
+}
+
+void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
+                    const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
+    const auto tex = textures_.find(body.id);
+    if (tex == textures_.end()) return;
+    const glm::dvec3 to_sun = sun.position_m - state.position_m;  // double, world frame
+    const double d_sun = glm::length(to_sun);
+    const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
+    const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
+    const glm::dmat3 channel_to_body = glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world;
+
+    program_.use();
+    program_.set("u_channel_to_body", glm::mat3(channel_to_body));
+    program_.set("u_sun_dir", glm::vec3(sun_dir));
+    program_.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
+    program_.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
+    program_.set("u_texture", 0);
+    tex->second->bind(0);
+    shadows.apply(program_, casters, 1);
+    vao_.bind();
+    draw_sphere(program_, view, sphere);
+    gl::check("body pass (" + body.name + ")");
+}
+
+}  // namespace cupola

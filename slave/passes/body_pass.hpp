@@ -1,0 +1,38 @@
+#pragma once
+// Planets and moons (for PainterPass, slave/passes/painter_pass.hpp, and the glare probe's
+// occluders), analytic ray-sphere on a viewpoint-oriented billboard (no mesh), textured from an
+// equirectangular image in the body frame and Lambert-lit by the scene's star:
+//   E = pi * L_sun * (1 - u/3) * (R_sun / d_sun)^2,  L = albedo / pi * E * max(cos i, 0) * texture.
+// Colour attachment 1 receives the deferred geometry of each covered pixel for the atmosphere
+// pass: rgb = diffuse reflectance (albedo * tint * texture, linear), a = hit distance in metres.
+#include <map>
+#include <memory>
+
+#include "config/scene_config.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/frame_context.hpp"
+#include "passes/sphere_billboard.hpp"
+#include "wire/snapshot.hpp"
+
+namespace cupola {
+
+// Irradiance (scene units) at distance d_m from the light's centre.
+double sun_irradiance(const SunLight& sun, double d_m);
+
+class BodyPass {
+public:
+    explicit BodyPass(const SceneConfig& scene);  // loads every planet/moon texture once
+    // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
+    void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
+              const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
+
+private:
+    GlProgram program_;
+    GlEmptyVertexArray vao_;
+    std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
+};
+
+}  // namespace cupola

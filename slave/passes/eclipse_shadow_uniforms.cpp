@@ -1,0 +1,38 @@
+#include "passes/eclipse_shadow_uniforms.hpp"
+
+#include <string>
+
+#include "eclipse/eclipse_reference.hpp"
+
+namespace cupola {
+
+namespace {
+GlTexture make_lut(double limb_u) {
+    const shading::Texture2DData t =
+        eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
+    return GlTexture(t.width, t.height, t.texels.data(), GL_LINEAR);
+}
+}  // namespace
+
+EclipseShadowUniforms::EclipseShadowUniforms(double limb_u)
+    : lut_(make_lut(limb_u)), lut_size_(eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight) {}
+
+void EclipseShadowUniforms::apply(const GlProgram& p, const shading::EclipseCasters& e, GLuint unit) const {
+    p.set("u_ecl.count", e.count);
+    p.set("u_ecl.mode", e.mode);
+    p.set("u_ecl.limb_u", e.limb_u);
+    p.set("u_ecl.butterworth_order", e.butterworth_order);
+    p.set("u_ecl.sun_position", e.sun_position);
+    p.set("u_ecl.sun_radius", e.sun_radius);
+    for (int i = 0; i < e.count; ++i) {
+        const std::string k = "[" + std::to_string(i) + "]";
+        p.set(("u_ecl.caster_position" + k).c_str(), e.caster_position[i]);
+        p.set(("u_ecl.caster_radius" + k).c_str(), e.caster_radius[i]);
+        p.set(("u_ecl.umbra_light" + k).c_str(), e.umbra_light[i]);
+    }
+    p.set("u_eclipse_lut", static_cast<int>(unit));
+    p.set("u_eclipse_lut_size", lut_size_);
+    lut_.bind(unit);
+}
+
+}  // namespace cupola

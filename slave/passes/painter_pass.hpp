@@ -1,0 +1,35 @@
+#pragma once
+// The scene's stars (SunPass) and its planets and moons (BodyPass) as one pass, far to near
+// (painter's order), into the colour and the G-buffer. Each disc is opaque and exact in angle,
+// so no depth buffer is needed between bodies; a Sun behind a planet is covered by it and a
+// planet behind the Sun by the Sun, whatever the order of the scene's bodies.
+#include <string>
+
+#include "config/scene_config.hpp"
+#include "passes/body_pass.hpp"
+#include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/render_pass.hpp"
+#include "passes/sun_pass.hpp"
+
+namespace cupola {
+
+class PainterPass : public RenderPass {
+public:
+    PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows);
+
+    std::string name() const override { return "sun and bodies"; }
+    PassIo io() const override { return {.writes_color = true, .writes_geometry = true}; }
+    int prepare(const FrameContext& frame) override;
+    void draw(const PassInputs& in, int step) override;
+
+    // The planets' and moons' drawer, which the glare probe draws the occluders with.
+    BodyPass& bodies() { return bodies_; }
+
+private:
+    const EclipseShadowUniforms& shadows_;
+    SunPass sun_;
+    BodyPass bodies_;
+    const FrameContext* frame_ = nullptr;
+};
+
+}  // namespace cupola

@@ -1,0 +1,68 @@
+#include "passes/star_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cupola {
+
+StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
+    : config_(config), program_("stars.vert", "stars.frag"), vertices_({3, 1, 1}) {
+    std::stable_sort(stars.begin(), stars.end(), [](const Star& a, const Star& b) { return a.v_mag < b.v_mag; });
+    std::vector<float> data;
+    data.reserve(stars.size() * 5);
+    for (const auto& s : stars) {
+        const glm::dvec3 d = s.direction();
+        data.insert(data.end(),
+                    {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
+                     static_cast<float>(config.zero_mag_flux * std::pow(10.0, -0.4 * s.v_mag)), s.b_minus_v});
+        magnitudes_.push_back(s.v_mag);
+    }
+    vertices_.upload(data);
+}
+
+int StarPass::prepare(const FrameContext& frame) {
+    view_ = &frame.view;
+    magnitude_limit_ = std::min<double>(config_.magnitude_limit, frame.snap->settings.star_magnitude_limit);
+    return 1;
+}
+
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_); }
+
+void StarPass::draw(const ChannelView& view, double magnitude_limit) {
+    const auto count = static_cast<GLsizei>(
+        std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
+        magnitudes_.begin());
+    if (count == 0) return;
+    const ChannelFrustum& f = *view.frustum;
+    const double sigma = config_.psf_sigma_arcmin / 60.0 * std::numbers::pi / 180.0;
+    const double ppt_x = f.width() / (f.tan_left() + f.tan_right());
+    const double ppt_y = f.height() / (f.tan_down() + f.tan_up());
+    // Guard band: stars whose centre lies just outside still spill light into the image.
+    const int guard = 16;
+    const double gx = guard / ppt_x, gy = guard / ppt_y;
+    const ChannelFrustum wide(
+        f.orientation(),
+        FovDeg{glm::degrees(std::atan(f.tan_left() + gx)), glm::degrees(std::atan(f.tan_right() + gx)),
+               glm::degrees(std::atan(f.tan_up() + gy)), glm::degrees(std::atan(f.tan_down() + gy))},
+        f.width() + 2 * guard, f.height() + 2 * guard);
+    glViewport(-guard, -guard, f.width() + 2 * guard, f.height() + 2 * guard);
+
+    program_.use();
+    program_.set("u_world_to_channel", glm::mat3(view.world_to_channel));
+    program_.set("u_projection", glm::mat4(wide.projection(0.1, 10.0)));
+    program_.set("u_px_per_tangent", glm::vec2(ppt_x, ppt_y));
+    program_.set("u_sigma", static_cast<float>(sigma));
+    program_.set("u_tangents", view.tangents());
+    program_.set("u_size", view.size());
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    vertices_.bind();
+    glDrawArrays(GL_POINTS, 0, count);
+    glDisable(GL_BLEND);
+    glViewport(0, 0, f.width(), f.height());
+    gl::check("star pass");
+}
+
+}  // namespace cupola

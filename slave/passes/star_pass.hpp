@@ -1,0 +1,39 @@
+#pragma once
+// The star field. Sizes and brightness are angular and cluster-wide (StarFieldConfig);
+// see shaders/stars.{vert,frag} and shaders/shared/star_psf.glsl.
+#include <memory>
+#include <vector>
+
+#include "config/scene_config.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/channel_view.hpp"
+#include "passes/render_pass.hpp"
+#include "scene/star_catalog.hpp"
+
+namespace cupola {
+
+class StarPass : public RenderPass {
+public:
+    // stars: any order (sorted here by magnitude so a limit is a prefix).
+    StarPass(const StarFieldConfig& config, std::vector<Star> stars);
+    // Adds the stars brighter than magnitude_limit into the bound framebuffer.
+    void draw(const ChannelView& view, double magnitude_limit);
+
+    // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
+    // brighter than both the scene's and the snapshot's magnitude limits.
+    std::string name() const override { return "stars"; }
+    PassIo io() const override { return {.writes_color = true}; }
+    int prepare(const FrameContext& frame) override;
+    void draw(const PassInputs& in, int step) override;
+
+private:
+    StarFieldConfig config_;
+    std::vector<float> magnitudes_;  // ascending
+    GlProgram program_;
+    GlVertexBuffer vertices_;
+    const ChannelView* view_ = nullptr;
+    double magnitude_limit_ = 0.0;
+};
+
+}  // namespace cupola
