@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "glare_sources.hpp"
+#include "glare/glare_sources.hpp"
 #include "show_script.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"

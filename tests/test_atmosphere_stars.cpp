@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "auto_exposure.hpp"
+#include "atmosphere/auto_exposure.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "egl_context.hpp"

@@ -7,7 +7,7 @@
 // and writes them into the snapshot, so the shared values lag the queries by one frame. Where a
 // channel that may see the source did not report frame N (lost report, dropped or restarted
 // slave), or no channel saw it, the snapshot keeps the analytic value of spherical occluders
-// (master/glare_sources), so the glare neither freezes nor flickers.
+// (common/glare/glare_sources), so the glare neither freezes nor flickers.
 #include <map>
 
 #include "config/cluster_config.hpp"

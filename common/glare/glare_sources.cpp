@@ -1,4 +1,4 @@
-#include "glare_sources.hpp"
+#include "glare/glare_sources.hpp"
 
 #include <algorithm>
 #include <cmath>

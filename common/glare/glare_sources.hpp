@@ -1,7 +1,7 @@
 #pragma once
 // Which sources get a glare this frame, how bright they are at the camera, and how much of each
 // spherical occluders hide (the analytic visibility every snapshot starts from; the measured
-// one replaces it when the whole cluster reported, master/glare_sharing).
+// one replaces it when the whole cluster reported, common/glare/glare_sharing).
 //   - Stars of the scene (the Sun): always, irradiance = disc radiance x pi sin^2(alpha) x
 //     limb-darkened mean.
 //   - Planets and moons smaller than kMaxBodyRadius: Lambert spheres lit by the Sun, (2/3) albedo E_sun (R/d)^2
@@ -13,9 +13,9 @@
 #include <memory>
 #include <vector>
 
+#include "atmosphere/scene_atmospheres.hpp"
 #include "config/scene_config.hpp"
 #include "scene/star_catalog.hpp"
-#include "scene_atmospheres.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
