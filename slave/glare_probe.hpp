@@ -1,5 +1,5 @@
 #pragma once
-// Glare visibility measured where it is rendered (seed 000, section 3.1.1, render bins: occluders
+// Glare visibility measured where it is rendered (Ekelin & Fernqvist 2009, sections 3.1.1 and 3.1.3: occluders
 // -> query -> atmosphere and other non-occluders -> glare). For each glare source of the
 // snapshot whose disc may reach this channel, the probe draws the occluders (the bodies, depth
 // only, by true distance) into a small view centred on the source, then counts the source's

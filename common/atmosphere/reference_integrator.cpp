@@ -333,7 +333,7 @@ void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const gl
             const double r = glm::length(p);
             const double mu = glm::dot(p, w) / r;
             // The view ray keeps the ground decision and length sky() made for it (one decision
-            // per ray, hard case 1); later segments decide from their own origin.
+            // per ray, so rounding near the horizon cannot flip it); later segments decide from their own origin.
             const bool ground = order == 1 ? hits_ground : ray_hits_ground(r, mu, R);
             const double len = order == 1 ? length
                                : ground   ? distance_to_ground(r, mu, R)
