@@ -37,6 +37,12 @@ public:
     static constexpr double kMaxBodyRadius = 0.0175;  // planets and moons up to 1 degree across the radius
 
 private:
+    struct Candidate;  // a source with its rank, before the brightest max_sources are kept
+    // Steps of select(): the scene's bodies (stars, planets, moons), then the catalogue stars.
+    void add_body_candidates(const Snapshot& snap, std::vector<Candidate>& candidates) const;
+    void add_catalog_candidates(const Snapshot& snap, std::vector<Candidate>& candidates) const;
+    glm::dvec3 transmittance(const Snapshot& snap, const glm::dvec3& dir) const;  // 1 without atmospheres
+
     const SceneConfig* scene_;
     const SceneAtmospheres* atmospheres_;
     std::vector<Star> stars_;
