@@ -1,4 +1,4 @@
-// Speed against error of every production atmosphere model (issue 3 benchmark).
+// Speed against error of every production atmosphere model.
 //   atmosphere_speed_vs_error [--size N] [--frames N] [--csv FILE]
 // For each quality level: table build time and memory (no cache), the error against the stored
 // reference dataset (data/atmosphere/earth_reference.csv, see production_accuracy.hpp), and the

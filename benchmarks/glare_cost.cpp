@@ -1,4 +1,4 @@
-// Glare cost and visibility accuracy per channel (issue 5): one channel looking at the Sun half
+// Glare cost and visibility accuracy per channel: one channel looking at the Sun half
 // hidden behind the Moon, rendered by the real SceneRenderer (EGL, the slave's passes), with the
 // glare off and with the glare on at several probe sizes. For each: ms per frame, the extra cost
 // of the glare (probe + occlusion queries + glare pass), and the visible fraction the queries
@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "glare_sources.hpp"
+#include "glare/glare_sources.hpp"
 #include "show_script.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"

@@ -192,26 +192,10 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
 std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
     char buf[256];
     switch (cmd.verb) {
-        case ControlVerb::Goto: {
-            const uint16_t id = body_id(cmd.body);
-            take_over(next, "goto");
-            const double secs = cmd.seconds.value_or(cluster_.input.goto_seconds);
-            nav_.fly_to(id, secs, nav_bodies(scene_, states_at(live_sim_time_at(next))));
-            std::snprintf(buf, sizeof buf, "goto %s: flying for %.3g s from frame %llu", scene_.bodies[id].name.c_str(),
-                          secs, static_cast<unsigned long long>(next));
-            return buf;
-        }
-        case ControlVerb::Mode: {
-            const NavMode m = cmd.nav_mode == "orbit"  ? NavMode::Orbit
-                              : cmd.nav_mode == "walk" ? NavMode::SurfaceWalk
-                                                       : NavMode::FreeFly;
-            std::optional<uint16_t> target;
-            if (!cmd.body.empty()) target = body_id(cmd.body);
-            take_over(next, "mode");
-            nav_.set_mode(m, nav_bodies(scene_, states_at(live_sim_time_at(next))), target);
-            return "mode " + std::string(nav_mode_name(nav_.mode())) + " around " + scene_.bodies[nav_.anchor()].name +
-                   " from frame " + std::to_string(next);
-        }
+        case ControlVerb::Goto:
+            return apply_goto(cmd, next);
+        case ControlVerb::Mode:
+            return apply_mode(cmd, next);
         case ControlVerb::TimeRate:
             take_over(next, "time rate");
             rebase(next);
@@ -224,29 +208,8 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             rebase(next);
             sim_base_ = cmd.sim_time_s;
             return "time " + utc_or_note(sim_base_) + " at frame " + std::to_string(next);
-        case ControlVerb::Play: {
-            if (!cmd.show_file.empty()) {
-                const std::string path = resolve_path(cluster_.directory, cmd.show_file);
-                try {
-                    show_ = ShowScript::load(path, scene_);
-                } catch (const std::exception& e) {
-                    throw ControlError(std::string("play: ") + e.what());
-                }
-                show_base_ = 0.0;
-            } else if (!live_ && !paused_) {
-                return "already playing " + show_.file();
-            } else if (live_) {
-                // show_base_ still holds the show time where the show was left.
-            }
-            dt_ = show_frame_interval_s(cluster_, show_);
-            live_ = false;
-            paused_ = false;
-            base_frame_ = next;
-            shaper_.reset();  // a device's smoothing tail must not take the show over again
-            std::snprintf(buf, sizeof buf, "playing %s from show time %.3f s at frame %llu", show_.file().c_str(),
-                          show_base_, static_cast<unsigned long long>(next));
-            return buf;
-        }
+        case ControlVerb::Play:
+            return apply_play(cmd, next);
         case ControlVerb::Pause:
             rebase(next);
             paused_ = true;
@@ -259,24 +222,7 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             if (!live_) take_over(next, "stop");
             return "manual control from frame " + std::to_string(next);
         case ControlVerb::Set:
-            if (cmd.setting == "shadow_mode") {
-                if (cmd.value == "show")
-                    shadow_override_.reset();
-                else
-                    shadow_override_ = shadow_mode_from_name(cmd.value);
-            } else if (cmd.setting == "exposure") {
-                if (cmd.value == "show")
-                    exposure_override_.reset();
-                else if (cmd.value == "auto")
-                    exposure_override_ = std::optional<float>{};
-                else
-                    exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
-            } else {
-                if (cmd.value == "show")
-                    star_limit_override_.reset();
-                else
-                    star_limit_override_ = static_cast<float>(cmd.number.value());
-            }
+            apply_setting(cmd);
             return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
         case ControlVerb::Status:
             return status(next).dump();
@@ -287,6 +233,75 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             return control_help();
     }
     return "";
+}
+
+std::string Director::apply_goto(const ControlCommand& cmd, uint64_t next) {
+    const uint16_t id = body_id(cmd.body);
+    take_over(next, "goto");
+    const double secs = cmd.seconds.value_or(cluster_.input.goto_seconds);
+    nav_.fly_to(id, secs, nav_bodies(scene_, states_at(live_sim_time_at(next))));
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "goto %s: flying for %.3g s from frame %llu", scene_.bodies[id].name.c_str(), secs,
+                  static_cast<unsigned long long>(next));
+    return buf;
+}
+
+std::string Director::apply_mode(const ControlCommand& cmd, uint64_t next) {
+    const NavMode m = cmd.nav_mode == "orbit"  ? NavMode::Orbit
+                      : cmd.nav_mode == "walk" ? NavMode::SurfaceWalk
+                                               : NavMode::FreeFly;
+    std::optional<uint16_t> target;
+    if (!cmd.body.empty()) target = body_id(cmd.body);
+    take_over(next, "mode");
+    nav_.set_mode(m, nav_bodies(scene_, states_at(live_sim_time_at(next))), target);
+    return "mode " + std::string(nav_mode_name(nav_.mode())) + " around " + scene_.bodies[nav_.anchor()].name +
+           " from frame " + std::to_string(next);
+}
+
+std::string Director::apply_play(const ControlCommand& cmd, uint64_t next) {
+    if (!cmd.show_file.empty()) {
+        const std::string path = resolve_path(cluster_.directory, cmd.show_file);
+        try {
+            show_ = ShowScript::load(path, scene_);
+        } catch (const std::exception& e) {
+            throw ControlError(std::string("play: ") + e.what());
+        }
+        show_base_ = 0.0;
+    } else if (!live_ && !paused_) {
+        return "already playing " + show_.file();
+    } else if (live_) {
+        // show_base_ still holds the show time where the show was left.
+    }
+    dt_ = show_frame_interval_s(cluster_, show_);
+    live_ = false;
+    paused_ = false;
+    base_frame_ = next;
+    shaper_.reset();  // a device's smoothing tail must not take the show over again
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "playing %s from show time %.3f s at frame %llu", show_.file().c_str(), show_base_,
+                  static_cast<unsigned long long>(next));
+    return buf;
+}
+
+void Director::apply_setting(const ControlCommand& cmd) {
+    if (cmd.setting == "shadow_mode") {
+        if (cmd.value == "show")
+            shadow_override_.reset();
+        else
+            shadow_override_ = shadow_mode_from_name(cmd.value);
+    } else if (cmd.setting == "exposure") {
+        if (cmd.value == "show")
+            exposure_override_.reset();
+        else if (cmd.value == "auto")
+            exposure_override_ = std::optional<float>{};
+        else
+            exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
+    } else {
+        if (cmd.value == "show")
+            star_limit_override_.reset();
+        else
+            star_limit_override_ = static_cast<float>(cmd.number.value());
+    }
 }
 
 nlohmann::json Director::status(uint64_t next) const {

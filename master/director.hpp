@@ -66,6 +66,11 @@ private:
     double sim_time_at(uint64_t frame) const;
     void rebase(uint64_t frame);  // clocks keep their values at `frame`, new rules from there
     void take_over(uint64_t frame, const char* why);
+    // The steps of apply() for the commands that take more than a line or two.
+    std::string apply_goto(const ControlCommand& cmd, uint64_t next);
+    std::string apply_mode(const ControlCommand& cmd, uint64_t next);
+    std::string apply_play(const ControlCommand& cmd, uint64_t next);
+    void apply_setting(const ControlCommand& cmd);  // "set": the overrides of the show
     double show_rate_at(double show_time_s) const;
     void press_buttons(
         uint64_t frame,

@@ -8,12 +8,12 @@
 #include <optional>
 #include <string>
 
+#include "atmosphere/auto_exposure.hpp"
+#include "atmosphere/scene_atmospheres.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
-#include "auto_exposure.hpp"
-#include "glare_sharing.hpp"
-#include "glare_sources.hpp"
-#include "scene_atmospheres.hpp"
+#include "glare/glare_sharing.hpp"
+#include "glare/glare_sources.hpp"
 #include "show_script.hpp"
 
 namespace cupola {

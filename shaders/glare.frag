@@ -1,5 +1,6 @@
 #version 450 core
-// Glare of one source (seed 000, sections 2.3 and 3.1; Spencer et al. 1995, shared/glare_psf.glsl):
+// Glare of one source (Ekelin & Fernqvist 2009, sections 2.3 and 3.1; Spencer et al. 1995,
+// shared/glare_psf.glsl):
 // bloom, lenticular halo and ciliary-corona streaks, added to the linear HDR image before any
 // tone mapping. The billboard (sphere.vert's corners) only bounds the work: the radiance is a
 // function of the view direction alone -- the angle from the glare centre and the azimuth in

@@ -1,5 +1,5 @@
 #version 450 core
-// The glare probe's occlusion query (seed 000, section 3.1.1): the source's disc in a small view
+// The glare probe's occlusion query (Ekelin & Fernqvist 2009, section 3.1.1): the source's disc in a small view
 // centred on it (probe frame: the source at -Z, +X/+Y the cluster-wide glare frame). Drawn once
 // without depth test (the total) and once per wedge with it (the unoccluded part), after the
 // occluders and before anything that does not occlude. A direction counts only in the channel

@@ -1,4 +1,4 @@
-// Scene test (issue 3): a real loopback run (master + slave processes, UDP, EGL, EXR files) flies
+// Scene test: a real loopback run (master + slave processes, UDP, EGL, EXR files) flies
 // from 400 km down to 1 km toward a sunset (configs/descent-1ch.json, auto exposure). The
 // atmosphere must not jump where the camera enters it (60 km, exactly at show time 3 s): the
 // frame-to-frame change there must be no larger than the largest change elsewhere in the flight.

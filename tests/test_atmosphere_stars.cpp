@@ -1,4 +1,4 @@
-// Stars through the atmosphere (issue 3), in physical units (the Sun at 2e9 cd/m^2, a V = 0 star
+// Stars through the atmosphere, in physical units (the Sun at 2e9 cd/m^2, a V = 0 star
 // at 2.54e-6 lux) with the master's cluster-wide auto exposure: drowned by the daytime sky,
 // visible at night, and visible -- dimmed by the transmittance -- through the thin rim seen from
 // orbit. Real EGL renders; "visible" is judged on the 8-bit display values the PNG would hold.
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "auto_exposure.hpp"
+#include "atmosphere/auto_exposure.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "gl/egl_context.hpp"

@@ -1,10 +1,10 @@
-// Cluster-wide automatic exposure (master/auto_exposure): one value per frame, decided by the
+// Cluster-wide automatic exposure (common/atmosphere/auto_exposure): one value per frame, decided by the
 // master from data every channel shares, following the sky from noon to night.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "auto_exposure.hpp"
+#include "atmosphere/auto_exposure.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "master_node.hpp"

@@ -182,7 +182,7 @@ TEST(EclipseReference, ConcentricDiscsAndFullCoverAreClosedForm) {
 TEST(EclipseReference, TinyOccluderDarkensByItsAreaTimesTheLocalIntensity) {
     // 1 - V = a^2 <I>_disc / (1 - u/3); the mean of I over the small disc is
     // I(s) + (a^2 / 8) laplacian I(s) + O(a^4), laplacian sqrt(1 - r^2) = -(2 - r^2) / (1 - r^2)^(3/2).
-    // At the centre the first term alone is a^2 I(0) / (1 - u/3) (the check).
+    // At the centre the first term alone is a^2 I(0) / (1 - u/3).
     const double a = 1e-3;
     for (double u : {0.0, 0.6, 1.0}) {
         EXPECT_NEAR((1.0 - visible_fraction_reference(a, 0.0, u)) / (a * a / (1.0 - u / 3.0)), 1.0, 1e-6) << u;
@@ -319,8 +319,9 @@ TEST(EclipseShadow, LookupTableLayoutAndErrorBound) {
 }
 
 TEST(EclipseShadow, FastModeIsTheSeedsLinearPenumbra) {
-    // No accuracy bound (it is the seed's approximation); its error is reported, and it keeps the
-    // limits: 1 beyond first contact, 0 in the umbra, 1 - a^2 at the antumbra's centre.
+    // No accuracy bound (it is the approximation of Ekelin & Fernqvist 2009, section 3.3.2); its
+    // error is reported, and it keeps the limits: 1 beyond first contact, 0 in the umbra, 1 - a^2
+    // at the antumbra's centre.
     ErrorStats sun_moon;
     for (int i = 0; i <= 40; ++i)
         for (int k = 0; k <= 200; ++k) {
@@ -353,7 +354,7 @@ TEST(EclipseShadow, IllustrativeRegions) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Numerically hard geometries (the list).
+// Numerically hard geometries.
 
 namespace {
 

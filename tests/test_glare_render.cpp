@@ -1,4 +1,4 @@
-// Sun glare across channel seams (issue 5): real loopback runs (master + slave processes, UDP,
+// Sun glare across channel seams: real loopback runs (master + slave processes, UDP,
 // EGL, occlusion queries, EXR frames, stitched domemasters kept under
 // build/test-tmp/GlareRender_*/out/dome).
 //   - Seam: the Sun exactly on the edge between two channels and on the corner of three; the
@@ -251,7 +251,7 @@ TEST(GlareRender, SeamOnAnEdgeAndACornerMatchesOneWideChannelAndTheNaiveWayDoesN
         ::testing::Test::RecordProperty(layout.name + "_shared_energy_error", std::to_string(shared.energy_error));
         EXPECT_LT(shared.energy_error, 0.02) << layout.name;
         EXPECT_LT(shared.seam_step, 0.02) << layout.name;
-        // The same check on the naive per-channel visibility (seed 000, section 5.1.1) fails.
+        // The same check on the naive per-channel visibility (Ekelin & Fernqvist 2009, section 5.1.1) fails.
         const SeamResult naive = seam_run(layout, "per_channel", layout.name == "edge" ? 48070 : 48090);
         ::testing::Test::RecordProperty(layout.name + "_naive_energy_error", std::to_string(naive.energy_error));
         EXPECT_GT(naive.energy_error, 0.02) << layout.name;

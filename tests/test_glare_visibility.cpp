@@ -1,5 +1,5 @@
 // Analytic visibility of the glare source (common/glare/analytic_visibility): the visible fraction
-// (the eclipse issue's disc-overlap math, area-weighted) and the visible centroid's offset, against
+// (the disc-overlap math of the eclipse shadows, area-weighted) and the visible centroid's offset, against
 // a brute-force double reference written here: rays from the camera on a fine polar grid over the
 // source's apparent disc (solid-angle weights), each tested against every occluder sphere in
 // double (hit in front of the camera and before the source's surface), accumulating the visible

@@ -1,4 +1,4 @@
-// Caster selection on the CPU (issue 4, seed 000 sections 3.3.1 and 3.3.3): shadow groups
+// Caster selection on the CPU (Ekelin & Fernqvist 2009, sections 3.3.1 and 3.3.3): shadow groups
 // (parent/child, siblings only when allowed), the penumbra-reaches-receiver test against
 // brute-force sampling of the visible fraction, per-frame selection on the real ephemeris, the
 // shader input it builds, and the scene/show file errors.

@@ -329,7 +329,7 @@ TEST(Stitch, RunDirectoryReportsDisagreeingHashesAndMissingFrames) {
     write_frame(in + "/A", ia, meta_for(ca, 2, "00000000000000a2"), {"exr"}, 2.0);
     write_frame(in + "/B", ib, meta_for(cb, 2, "00000000000000ff"), {"exr", "png"}, 2.0);
     write_frame(in + "/A", ia, meta_for(ca, 3, "00000000000000a3"), {"exr"}, 2.0);
-    test::write_text(in + "/A/notes.txt", "not a frame");
+    test::write_text(in + "/A/readme.txt", "not a frame");
 
     const StitchReport r = stitch_run_directory(cfg, in, out, std::nullopt, 0);
     EXPECT_EQ(r.frames, (std::vector<uint64_t>{1, 2, 3}));

@@ -7,7 +7,7 @@
 namespace cupola::atmosphere {
 
 // The smallest camera altitude the integrator accepts (m); cameras below are raised to it
-// (notes, hard case 7: a camera exactly at/inside the ground).
+// (a camera exactly at or inside the ground would otherwise give empty or negative paths).
 inline constexpr double kMinCameraAltitude = 1.0;
 
 // r^2 (mu^2 - 1) + radius^2, computed without cancellation (may be negative: no intersection).

@@ -154,7 +154,7 @@ AtmosphereParameters AtmosphereParameters::earth() {
     p.name = "earth";
     // Radii, Rayleigh (1.24062e-6 lambda_um^-4, H 8 km), Mie (extinction 4.44e-6 = 5.328e-3 / 1200,
     // alpha 0, albedo 0.9, g 0.8 Cornette-Shanks, H 1.2 km), ozone 300 DU in a 10-25-40 km tent,
-    // ground albedo 0.1: Bruneton 2017 demo constants (docs: /work/shared/notes/accuracy-references.md).
+    // ground albedo 0.1: the constants of Bruneton 2017's demo (demo.cc; docs/REFERENCES.md).
     // Top at 60 km as Bruneton (Hillaire 2020 uses 100 km; above 60 km the Rayleigh density is < 6e-4).
     p.bottom_radius = 6360000.0;
     p.top_radius = 6420000.0;

@@ -25,8 +25,9 @@ inline const double kProductionWavelengths[3] = {shading::ATM_LAMBDA_R, shading:
 // The uniform struct of the shared code, at the three sample wavelengths.
 shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p);
 
-// Fit of the seed-000 sunlight function to the model's own transmittance toward the Sun at half a
-// Rayleigh scale height (least squares over sun zenith 0..110 degrees).
+// Fit of the analytic mode's sunlight function E_sun (Ekelin & Fernqvist 2009, section 3.2.1) to
+// the model's own transmittance toward the Sun at half a Rayleigh scale height (least squares over
+// sun zenith 0..110 degrees).
 shading::AtmosphereAnalyticFit fit_analytic_sun(const shading::AtmosphereParams& a);
 
 struct ProductionRadiance {

@@ -1,6 +1,6 @@
 #pragma once
 // Quality levels of the production atmosphere: table sizes, integration counts, per-pixel march
-// samples, and whether the analytic fast mode (seed 000) replaces the tables. Chosen by name in
+// samples, and whether the analytic fast mode (Ekelin & Fernqvist 2009) replaces the tables. Chosen by name in
 // scene files and on the command line (`--model`); docs/atmosphere-speed-vs-error.md measures each.
 #include <string>
 #include <vector>
@@ -9,7 +9,7 @@ namespace cupola::atmosphere {
 
 struct ProductionQuality {
     std::string name;
-    bool analytic = false;  // seed 000 fast mode: no tables beyond the fit, no march
+    bool analytic = false;  // the analytic fast mode: no tables beyond the fit, no march
     bool multiple_scattering = true;
     int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
     int ms_size = 32, ms_directions = 64, ms_steps = 20;

@@ -305,6 +305,58 @@ void ReferenceIntegrator::single_scattering(const glm::dvec3& o, const glm::dvec
     }
 }
 
+// One Monte Carlo path of multiple_scattering(): its random stream, the current point and
+// direction, and per wavelength the path throughput, the radiance collected so far and scratch
+// space (the segment's optical depth, the transmittance toward the Sun).
+struct ReferenceIntegrator::MsPath {
+    Rng rng{0, 0};
+    glm::dvec3 p{0.0}, w{0.0};
+    std::vector<double> contrib, thr, tau, ts;
+};
+
+namespace {
+
+// Running sums of the paths' radiance (spectrum, rgb, luminance): the mean and its standard error.
+struct MsTally {
+    explicit MsTally(std::size_t n) : sum(n, 0.0), sumsq(n, 0.0) {}
+
+    void add(const std::vector<double>& contrib, const SpectralToColor& color) {
+        for (std::size_t k = 0; k < contrib.size(); ++k) {
+            sum[k] += contrib[k];
+            sumsq[k] += contrib[k] * contrib[k];
+        }
+        const glm::dvec3 c = color.rgb(contrib);
+        const double l = color.luminance(contrib);
+        rgb_sum += c;
+        rgb_sumsq += c * c;
+        lum_sum += l;
+        lum_sumsq += l * l;
+    }
+
+    void finish(double m, SkyRadiance& out) const {
+        auto stderr_of = [m](double s, double s2) {
+            if (m < 2.0) return 0.0;
+            const double mean = s / m;
+            return std::sqrt(std::max(0.0, (s2 - m * mean * mean) / (m - 1.0)) / m);
+        };
+        for (std::size_t k = 0; k < sum.size(); ++k) {
+            out.multiple_spectrum[k] = sum[k] / m;
+            out.multiple_stderr[k] = stderr_of(sum[k], sumsq[k]);
+        }
+        out.multiple_rgb = rgb_sum / m;
+        out.multiple_rgb_stderr = {stderr_of(rgb_sum.x, rgb_sumsq.x), stderr_of(rgb_sum.y, rgb_sumsq.y),
+                                   stderr_of(rgb_sum.z, rgb_sumsq.z)};
+        out.multiple_luminance = lum_sum / m;
+        out.multiple_luminance_stderr = stderr_of(lum_sum, lum_sumsq);
+    }
+
+    std::vector<double> sum, sumsq;
+    glm::dvec3 rgb_sum{0.0}, rgb_sumsq{0.0};
+    double lum_sum = 0.0, lum_sumsq = 0.0;
+};
+
+}  // namespace
+
 void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const glm::dvec3& view, double length,
                                               bool hits_ground, const glm::dvec3& sun, SkyRadiance& out) const {
     const std::size_t n = beta_r_.size();
@@ -316,138 +368,136 @@ void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const gl
     out.ms_paths = paths;
     if (max_order < first || paths == 0) return;
 
-    const double R = params_.bottom_radius, top = params_.top_radius;
-    const double ph = settings_.ms_panel_height_m;
-    const double g = params_.mie_g;
-    std::vector<double> sum(n, 0.0), sumsq(n, 0.0), contrib(n), thr(n), tau(n), ts(n);
-    glm::dvec3 rgb_sum(0.0), rgb_sumsq(0.0);
-    double lum_sum = 0.0, lum_sumsq = 0.0;
-    const double inv_n = 1.0 / static_cast<double>(n);
+    MsTally tally(n);
+    MsPath path;
+    path.contrib.resize(n);
+    path.thr.resize(n);
+    path.tau.resize(n);
+    path.ts.resize(n);
+    for (int i = 0; i < paths; ++i) {
+        path.rng = Rng(settings_.seed, static_cast<std::uint64_t>(i));
+        std::fill(path.contrib.begin(), path.contrib.end(), 0.0);
+        std::fill(path.thr.begin(), path.thr.end(), 1.0);
+        path.p = camera;
+        path.w = view;
+        trace_ms_path(path, length, hits_ground, sun);
+        tally.add(path.contrib, color_);
+    }
+    tally.finish(static_cast<double>(paths), out);
+}
 
-    for (int path = 0; path < paths; ++path) {
-        Rng rng(settings_.seed, static_cast<std::uint64_t>(path));
-        std::fill(contrib.begin(), contrib.end(), 0.0);
-        std::fill(thr.begin(), thr.end(), 1.0);
-        glm::dvec3 p = camera, w = view;
-        for (int order = 1; order <= max_order; ++order) {
-            const double r = glm::length(p);
-            const double mu = glm::dot(p, w) / r;
-            // The view ray keeps the ground decision and length sky() made for it (one decision
-            // per ray, hard case 1); later segments decide from their own origin.
-            const bool ground = order == 1 ? hits_ground : ray_hits_ground(r, mu, R);
-            const double len = order == 1 ? length
-                               : ground   ? distance_to_ground(r, mu, R)
-                                          : distance_to_top(std::min(r, top), mu, top);
-            const Segment s = make_segment(p, w, len, ph, {});
-            const glm::dvec3 dl = s.cum.back();
-            for (std::size_t k = 0; k < n; ++k) tau[k] = beta_r_[k] * dl.x + beta_me_[k] * dl.y + beta_o_[k] * dl.z;
-            const std::size_t hero = std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
-            const glm::dvec3 sig_h(beta_r_[hero], beta_me_[hero], beta_o_[hero]);
-            // Segments ending on the ground: choose the ground with probability alpha (the mean
-            // transmittance, kept in [0.05, 0.95] so that neither branch becomes a rare event, e.g.
-            // a camera 1 m above the ground looking down); otherwise, and on segments that leave
-            // the atmosphere, a collision is forced inside [0, len].
-            double alpha = 0.0;
-            if (ground) {
-                for (std::size_t k = 0; k < n; ++k) alpha += std::exp(-tau[k]);
-                alpha = std::clamp(alpha * inv_n, 0.05, 0.95);
-            }
-            const bool surface = ground && rng.uniform() < alpha;
-            const double u = rng.uniform();
-            double t = 0.0;
-            if (!surface) {
-                if (!(tau[hero] > 0.0)) break;
-                const double target = -std::log1p(u * std::expm1(-tau[hero]));  // truncated to [0, tau]
-                t = sample_segment(s, sig_h, std::min(target, tau[hero]));
-            }
-            if (surface) {
-                for (std::size_t k = 0; k < n; ++k) thr[k] *= std::exp(-tau[k]) / alpha;
-                const glm::dvec3 normal = glm::normalize(p + len * w);
-                p = normal * R;
-                const double mu_s = glm::dot(normal, sun);
-                if (order >= first && mu_s > 0.0) {
-                    sun_transmittance(p, sun, ph, ts);
-                    for (std::size_t k = 0; k < n; ++k)
-                        contrib[k] += thr[k] * albedo_[k] / kPi * mu_s * ts[k] * sun_[k];
-                }
-                if (order == max_order) break;
-                // Cosine-weighted hemisphere: f cos / pdf = albedo.
-                const double u1 = rng.uniform(), u2 = rng.uniform();
-                w = direction_around(normal, std::sqrt(1.0 - u1), 2.0 * kPi * u2);
-                for (std::size_t k = 0; k < n; ++k) thr[k] *= albedo_[k];
-                continue;
-            }
-            // Volume collision at t.
-            const glm::dvec3 x = p + t * w;
-            const glm::dvec3 col = segment_column(s, t);
-            const glm::dvec3 rho = densities(x);
-            double pdf = 0.0;
-            for (std::size_t k = 0; k < n; ++k) {
-                const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
-                const double sk = beta_r_[k] * rho.x + beta_me_[k] * rho.y + beta_o_[k] * rho.z;
-                const double norm = -std::expm1(-tau[k]);
-                if (norm > 0.0) pdf += sk * std::exp(-tk) / norm;
-            }
-            pdf *= inv_n * (1.0 - alpha);
-            if (!(pdf > 0.0)) break;
-            for (std::size_t k = 0; k < n; ++k) {
-                const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
-                thr[k] *= std::exp(-tk) / pdf;
-            }
-            p = x;
-            if (order >= first) {
-                sun_transmittance(p, sun, ph, ts);
-                const double nu = glm::dot(w, sun);
-                const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(g, nu);
-                for (std::size_t k = 0; k < n; ++k)
-                    contrib[k] += thr[k] * (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) * ts[k] * sun_[k];
-            }
-            if (order == max_order) break;
-            // New direction from the Rayleigh / HG mixture.
-            double sr = 0.0, sm = 0.0;
-            for (std::size_t k = 0; k < n; ++k) {
-                sr += beta_r_[k] * rho.x;
-                sm += beta_ms_[k] * rho.y;
-            }
-            if (!(sr + sm > 0.0)) break;
-            const double q = sr / (sr + sm);
-            const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-            const double nu = u1 < q ? sample_rayleigh_nu(u2) : sample_hg_nu(g, u2);
-            const glm::dvec3 w_new = direction_around(w, nu, 2.0 * kPi * u3);
-            const double c = glm::dot(w, w_new);
-            const double dir_pdf = q * rayleigh_phase(c) + (1.0 - q) * henyey_greenstein_phase(g, c);
-            if (!(dir_pdf > 0.0)) break;
-            const double pr = rayleigh_phase(c), pm = cornette_shanks_phase(g, c);
-            for (std::size_t k = 0; k < n; ++k)
-                thr[k] *= (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) / dir_pdf;
-            w = w_new;
+void ReferenceIntegrator::trace_ms_path(MsPath& path, double length, bool hits_ground, const glm::dvec3& sun) const {
+    const std::size_t n = beta_r_.size();
+    const double R = params_.bottom_radius, top = params_.top_radius;
+    const double inv_n = 1.0 / static_cast<double>(n);
+    std::vector<double>& tau = path.tau;
+    for (int order = 1; order <= settings_.scattering_orders; ++order) {
+        const double r = glm::length(path.p);
+        const double mu = glm::dot(path.p, path.w) / r;
+        // The view ray keeps the ground decision and length sky() made for it (one decision per
+        // ray, so rounding near the horizon cannot flip it); later segments decide from their own
+        // origin.
+        const bool ground = order == 1 ? hits_ground : ray_hits_ground(r, mu, R);
+        const double len = order == 1 ? length
+                           : ground   ? distance_to_ground(r, mu, R)
+                                      : distance_to_top(std::min(r, top), mu, top);
+        const Segment s = make_segment(path.p, path.w, len, settings_.ms_panel_height_m, {});
+        const glm::dvec3 dl = s.cum.back();
+        for (std::size_t k = 0; k < n; ++k) tau[k] = beta_r_[k] * dl.x + beta_me_[k] * dl.y + beta_o_[k] * dl.z;
+        const std::size_t hero = std::min(n - 1, static_cast<std::size_t>(path.rng.uniform() * static_cast<double>(n)));
+        const glm::dvec3 sig_h(beta_r_[hero], beta_me_[hero], beta_o_[hero]);
+        // Segments ending on the ground: choose the ground with probability alpha (the mean
+        // transmittance, kept in [0.05, 0.95] so that neither branch becomes a rare event, e.g.
+        // a camera 1 m above the ground looking down); otherwise, and on segments that leave
+        // the atmosphere, a collision is forced inside [0, len].
+        double alpha = 0.0;
+        if (ground) {
+            for (std::size_t k = 0; k < n; ++k) alpha += std::exp(-tau[k]);
+            alpha = std::clamp(alpha * inv_n, 0.05, 0.95);
         }
-        for (std::size_t k = 0; k < n; ++k) {
-            sum[k] += contrib[k];
-            sumsq[k] += contrib[k] * contrib[k];
+        const bool surface = ground && path.rng.uniform() < alpha;
+        const double u = path.rng.uniform();
+        if (surface) {
+            if (!ms_surface_bounce(path, order, len, alpha, sun)) break;
+            continue;
         }
-        const glm::dvec3 c = color_.rgb(contrib);
-        const double l = color_.luminance(contrib);
-        rgb_sum += c;
-        rgb_sumsq += c * c;
-        lum_sum += l;
-        lum_sumsq += l * l;
+        if (!(tau[hero] > 0.0)) break;
+        const double target = -std::log1p(u * std::expm1(-tau[hero]));  // truncated to [0, tau]
+        const double t = sample_segment(s, sig_h, std::min(target, tau[hero]));
+        if (!ms_volume_scatter(path, order, s, t, alpha, sun)) break;
     }
-    const double m = static_cast<double>(paths);
-    auto stderr_of = [m](double s, double s2) {
-        if (m < 2.0) return 0.0;
-        const double mean = s / m;
-        return std::sqrt(std::max(0.0, (s2 - m * mean * mean) / (m - 1.0)) / m);
-    };
+}
+
+bool ReferenceIntegrator::ms_surface_bounce(MsPath& path, int order, double len, double alpha,
+                                            const glm::dvec3& sun) const {
+    const std::size_t n = beta_r_.size();
+    for (std::size_t k = 0; k < n; ++k) path.thr[k] *= std::exp(-path.tau[k]) / alpha;
+    const glm::dvec3 normal = glm::normalize(path.p + len * path.w);
+    path.p = normal * params_.bottom_radius;
+    const double mu_s = glm::dot(normal, sun);
+    if (order >= settings_.ms_first_order && mu_s > 0.0) {
+        sun_transmittance(path.p, sun, settings_.ms_panel_height_m, path.ts);
+        for (std::size_t k = 0; k < n; ++k)
+            path.contrib[k] += path.thr[k] * albedo_[k] / kPi * mu_s * path.ts[k] * sun_[k];
+    }
+    if (order == settings_.scattering_orders) return false;
+    // Cosine-weighted hemisphere: f cos / pdf = albedo.
+    const double u1 = path.rng.uniform(), u2 = path.rng.uniform();
+    path.w = direction_around(normal, std::sqrt(1.0 - u1), 2.0 * kPi * u2);
+    for (std::size_t k = 0; k < n; ++k) path.thr[k] *= albedo_[k];
+    return true;
+}
+
+bool ReferenceIntegrator::ms_volume_scatter(MsPath& path, int order, const Segment& s, double t, double alpha,
+                                            const glm::dvec3& sun) const {
+    const std::size_t n = beta_r_.size();
+    const double inv_n = 1.0 / static_cast<double>(n);
+    const double g = params_.mie_g;
+    const std::vector<double>& tau = path.tau;
+    std::vector<double>& thr = path.thr;
+    const glm::dvec3 x = path.p + t * path.w;
+    const glm::dvec3 col = segment_column(s, t);
+    const glm::dvec3 rho = densities(x);
+    double pdf = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
-        out.multiple_spectrum[k] = sum[k] / m;
-        out.multiple_stderr[k] = stderr_of(sum[k], sumsq[k]);
+        const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
+        const double sk = beta_r_[k] * rho.x + beta_me_[k] * rho.y + beta_o_[k] * rho.z;
+        const double norm = -std::expm1(-tau[k]);
+        if (norm > 0.0) pdf += sk * std::exp(-tk) / norm;
     }
-    out.multiple_rgb = rgb_sum / m;
-    out.multiple_rgb_stderr = {stderr_of(rgb_sum.x, rgb_sumsq.x), stderr_of(rgb_sum.y, rgb_sumsq.y),
-                               stderr_of(rgb_sum.z, rgb_sumsq.z)};
-    out.multiple_luminance = lum_sum / m;
-    out.multiple_luminance_stderr = stderr_of(lum_sum, lum_sumsq);
+    pdf *= inv_n * (1.0 - alpha);
+    if (!(pdf > 0.0)) return false;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double tk = beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z;
+        thr[k] *= std::exp(-tk) / pdf;
+    }
+    path.p = x;
+    if (order >= settings_.ms_first_order) {
+        sun_transmittance(path.p, sun, settings_.ms_panel_height_m, path.ts);
+        const double nu = glm::dot(path.w, sun);
+        const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(g, nu);
+        for (std::size_t k = 0; k < n; ++k)
+            path.contrib[k] += thr[k] * (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) * path.ts[k] * sun_[k];
+    }
+    if (order == settings_.scattering_orders) return false;
+    // New direction from the Rayleigh / HG mixture.
+    double sr = 0.0, sm = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        sr += beta_r_[k] * rho.x;
+        sm += beta_ms_[k] * rho.y;
+    }
+    if (!(sr + sm > 0.0)) return false;
+    const double q = sr / (sr + sm);
+    const double u1 = path.rng.uniform(), u2 = path.rng.uniform(), u3 = path.rng.uniform();
+    const double nu = u1 < q ? sample_rayleigh_nu(u2) : sample_hg_nu(g, u2);
+    const glm::dvec3 w_new = direction_around(path.w, nu, 2.0 * kPi * u3);
+    const double c = glm::dot(path.w, w_new);
+    const double dir_pdf = q * rayleigh_phase(c) + (1.0 - q) * henyey_greenstein_phase(g, c);
+    if (!(dir_pdf > 0.0)) return false;
+    const double pr = rayleigh_phase(c), pm = cornette_shanks_phase(g, c);
+    for (std::size_t k = 0; k < n; ++k) thr[k] *= (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) / dir_pdf;
+    path.w = w_new;
+    return true;
 }
 
 SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {

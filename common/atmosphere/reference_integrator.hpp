@@ -153,6 +153,13 @@ private:
                            const glm::dvec3& sun, SkyRadiance& out) const;
     void multiple_scattering(const glm::dvec3& o, const glm::dvec3& v, double length, bool hits_ground,
                              const glm::dvec3& sun, SkyRadiance& out) const;
+    // The steps of multiple_scattering(): one path from the camera, and at each order either a
+    // bounce off the ground or a collision in the air (false: the path ends there).
+    struct MsPath;
+    void trace_ms_path(MsPath& path, double length, bool hits_ground, const glm::dvec3& sun) const;
+    bool ms_surface_bounce(MsPath& path, int order, double len, double alpha, const glm::dvec3& sun) const;
+    bool ms_volume_scatter(MsPath& path, int order, const Segment& s, double t, double alpha,
+                           const glm::dvec3& sun) const;
 
     AtmosphereParameters params_;
     ReferenceSettings settings_;

@@ -2,11 +2,9 @@
 // Spectrum -> CIE 1931 XYZ -> linear sRGB for the atmosphere reference.
 //
 // Thin adapter over shaders/shared/star_color.glsl (compiled as C++ via shading/shared_shading.hpp):
-// the Gaussian lobe function cie_lobe() is called from there; the lobe coefficients of Wyman,
-// Sloan & Shirley 2013 and the IEC 61966-2-1 XYZ->sRGB matrix are the same numbers that file uses
-// inline in blackbody_xyz() / bv_to_linear_srgb(), which expose no per-wavelength function.
-// (Suggested refactor for the lead: give star_color.glsl a `vec3 cie_xyz_bar(float lambda)` and an
-// `xyz_to_linear_srgb(vec3)` and call those here.)
+// the colour-matching functions (the multi-lobe fit of Wyman, Sloan & Shirley 2013) and the
+// IEC 61966-2-1 XYZ->sRGB matrix are that file's cie_xyz_bar() and xyz_to_linear_srgb(), so the
+// atmosphere and the star colours share one set of numbers.
 #include <glm/glm.hpp>
 
 #include <vector>

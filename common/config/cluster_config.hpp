@@ -36,7 +36,7 @@ struct DomeConfig {
 };
 
 // Cluster-wide automatic exposure, decided by the master from the shared scene state (see
-// master/auto_exposure.hpp): exposure = key / (mean scene luminance over the dome), clamped.
+// common/atmosphere/auto_exposure.hpp): exposure = key / (mean scene luminance over the dome), clamped.
 struct AutoExposureConfig {
     bool enabled = false;
     double key = 0.18;  // display value given to the mean luminance

@@ -183,6 +183,123 @@ ChannelFiles scan_channel_dir(const fs::path& dir) {
 
 std::string frame_label(uint64_t frame) { return "frame " + std::to_string(frame); }
 
+// Scans every channel's directory (files[i] for config.channels[i]) and returns the frames to
+// stitch: all that any channel has, or only_frame alone; empty (with the problem reported) when
+// there is nothing to stitch.
+std::set<uint64_t> frames_to_stitch(const ClusterConfig& config, const std::string& in_dir,
+                                    std::optional<uint64_t> only_frame, std::vector<ChannelFiles>& files,
+                                    StitchReport& report) {
+    std::set<uint64_t> all_frames;
+    for (const auto& ch : config.channels) {
+        const fs::path dir = fs::path(in_dir) / ch.name;
+        files.push_back(scan_channel_dir(dir));
+        if (files.back().by_frame.empty())
+            report.problems.push_back("channel " + ch.name + ": no frames in " + dir.string());
+        for (const auto& [f, _] : files.back().by_frame) all_frames.insert(f);
+    }
+    if (only_frame) {
+        if (!all_frames.count(*only_frame)) {
+            report.problems.push_back(frame_label(*only_frame) + ": not found in any channel under " + in_dir);
+            return {};
+        }
+        all_frames = {*only_frame};
+    }
+    if (all_frames.empty())
+        report.problems.push_back(in_dir + ": no channel frames (expected " + in_dir +
+                                  "/<channel name>/frame_NNNNNN.exr or .png)");
+    return all_frames;
+}
+
+// The domemaster is always written as PNG, and also as EXR when the channels are.
+std::vector<std::string> dome_formats(const ClusterConfig& config) {
+    std::vector<std::string> formats = {"png"};
+    if (std::find(config.output.formats.begin(), config.output.formats.end(), "exr") != config.output.formats.end())
+        formats.push_back("exr");
+    return formats;
+}
+
+// The readable channel images of one frame, in config order, with what each recorded.
+struct FrameChannels {
+    std::vector<ChannelFrustum> frusta;
+    std::vector<Image> images;
+    std::vector<FrameMetadata> metas;
+    std::vector<std::string> names;
+};
+
+// Reports where a channel image disagrees with the config or its own file name (it is used anyway).
+void check_channel_image(const ChannelConfig& ch, uint64_t frame, const std::string& path, const Image& im,
+                         const FrameMetadata& meta, const std::string& label, StitchReport& report) {
+    if (im.width != ch.width || im.height != ch.height)
+        report.problems.push_back(label + ": " + path + " is " + std::to_string(im.width) + "x" +
+                                  std::to_string(im.height) + " but channel " + ch.name + " is " +
+                                  std::to_string(ch.width) + "x" + std::to_string(ch.height) +
+                                  " in the config (resampled with its own size)");
+    if (meta.frame != frame)
+        report.problems.push_back(label + ": " + path + " records frame " + std::to_string(meta.frame));
+    if (meta.channel_id != ch.id)
+        report.problems.push_back(label + ": " + path + " records channel " + std::to_string(meta.channel_id) +
+                                  ", the config says " + ch.name + " is channel " + std::to_string(ch.id));
+}
+
+// Reads frame `frame` of every channel; a channel without the frame or with an unreadable file is
+// reported and left out.
+FrameChannels read_frame_channels(const ClusterConfig& config, const std::vector<ChannelFiles>& files, uint64_t frame,
+                                  const std::string& label, StitchReport& report) {
+    FrameChannels out;
+    for (size_t i = 0; i < config.channels.size(); ++i) {
+        const auto& ch = config.channels[i];
+        auto it = files[i].by_frame.find(frame);
+        if (it == files[i].by_frame.end()) {
+            report.problems.push_back(label + ": missing in channel " + ch.name);
+            continue;
+        }
+        FrameMetadata meta;
+        Image im;
+        try {
+            im = read_image_radiance(it->second, &meta);
+        } catch (const std::exception& e) {
+            report.problems.push_back(label + ": channel " + ch.name + ": " + e.what());
+            continue;
+        }
+        check_channel_image(ch, frame, it->second, im, meta, label, report);
+        out.frusta.emplace_back(ch.orientation, ch.fov, im.width, im.height);
+        out.images.push_back(std::move(im));
+        out.metas.push_back(std::move(meta));
+        out.names.push_back(ch.name);
+    }
+    return out;
+}
+
+// Sync check: every channel must have rendered the same snapshot.
+void check_snapshot_hashes(const FrameChannels& channels, const std::string& label, StitchReport& report) {
+    const auto& metas = channels.metas;
+    bool agree = true;
+    for (const auto& m : metas)
+        if (m.snapshot_hash.empty() || m.snapshot_hash != metas.front().snapshot_hash) agree = false;
+    if (agree) return;
+    std::string msg = label + ": snapshot hashes disagree:";
+    for (size_t k = 0; k < metas.size(); ++k)
+        msg += " " + channels.names[k] + "=" + (metas[k].snapshot_hash.empty() ? "(none)" : metas[k].snapshot_hash);
+    report.problems.push_back(msg);
+}
+
+// Writes the stitched frame with the first channel's time, snapshot and renderer.
+std::vector<std::string> write_dome_frame(const ClusterConfig& config, const std::string& out_dir, uint64_t frame,
+                                          const Image& dome, const FrameMetadata& first,
+                                          const std::vector<std::string>& formats) {
+    FrameMetadata out_meta;
+    out_meta.channel_id = -1;
+    out_meta.channel_name = "dome";
+    out_meta.frame = frame;
+    out_meta.sim_time_s = first.sim_time_s;
+    out_meta.snapshot_hash = first.snapshot_hash;
+    out_meta.renderer = first.renderer;
+    // The frame's own exposure (the master's auto exposure varies it per frame; all channels
+    // share it), else the configured one.
+    const double exposure = first.exposure > 0.0 ? first.exposure : config.output.exposure;
+    return write_frame(out_dir, dome, out_meta, formats, exposure);
+}
+
 }  // namespace
 
 StitchReport stitch_run_directory(const ClusterConfig& config, const std::string& in_dir, const std::string& out_dir,
@@ -198,100 +315,21 @@ StitchReport stitch_run_directory(const ClusterConfig& config, const std::string
         report.problems.push_back(in_dir + ": not a directory");
         return report;
     }
-
     std::vector<ChannelFiles> files;
-    std::set<uint64_t> all_frames;
-    for (const auto& ch : config.channels) {
-        const fs::path dir = fs::path(in_dir) / ch.name;
-        files.push_back(scan_channel_dir(dir));
-        if (files.back().by_frame.empty())
-            report.problems.push_back("channel " + ch.name + ": no frames in " + dir.string());
-        for (const auto& [f, _] : files.back().by_frame) all_frames.insert(f);
-    }
-    if (only_frame) {
-        if (!all_frames.count(*only_frame)) {
-            report.problems.push_back(frame_label(*only_frame) + ": not found in any channel under " + in_dir);
-            return report;
-        }
-        all_frames = {*only_frame};
-    }
-    if (all_frames.empty()) {
-        report.problems.push_back(in_dir + ": no channel frames (expected " + in_dir +
-                                  "/<channel name>/frame_NNNNNN.exr or .png)");
-        return report;
-    }
-
-    std::vector<std::string> formats = {"png"};
-    if (std::find(config.output.formats.begin(), config.output.formats.end(), "exr") != config.output.formats.end())
-        formats.push_back("exr");
-
-    for (uint64_t frame : all_frames) {
+    const std::set<uint64_t> frames = frames_to_stitch(config, in_dir, only_frame, files, report);
+    const std::vector<std::string> formats = dome_formats(config);
+    for (uint64_t frame : frames) {
         const std::string label = frame_label(frame);
-        std::vector<ChannelFrustum> frusta;
-        std::vector<Image> images;
-        std::vector<FrameMetadata> metas;
-        std::vector<std::string> names;
-        for (size_t i = 0; i < config.channels.size(); ++i) {
-            const auto& ch = config.channels[i];
-            auto it = files[i].by_frame.find(frame);
-            if (it == files[i].by_frame.end()) {
-                report.problems.push_back(label + ": missing in channel " + ch.name);
-                continue;
-            }
-            FrameMetadata meta;
-            Image im;
-            try {
-                im = read_image_radiance(it->second, &meta);
-            } catch (const std::exception& e) {
-                report.problems.push_back(label + ": channel " + ch.name + ": " + e.what());
-                continue;
-            }
-            if (im.width != ch.width || im.height != ch.height)
-                report.problems.push_back(label + ": " + it->second + " is " + std::to_string(im.width) + "x" +
-                                          std::to_string(im.height) + " but channel " + ch.name + " is " +
-                                          std::to_string(ch.width) + "x" + std::to_string(ch.height) +
-                                          " in the config (resampled with its own size)");
-            if (meta.frame != frame)
-                report.problems.push_back(label + ": " + it->second + " records frame " + std::to_string(meta.frame));
-            if (meta.channel_id != ch.id)
-                report.problems.push_back(label + ": " + it->second + " records channel " +
-                                          std::to_string(meta.channel_id) + ", the config says " + ch.name +
-                                          " is channel " + std::to_string(ch.id));
-            frusta.emplace_back(ch.orientation, ch.fov, im.width, im.height);
-            images.push_back(std::move(im));
-            metas.push_back(std::move(meta));
-            names.push_back(ch.name);
-        }
-        if (images.empty()) {
+        const FrameChannels channels = read_frame_channels(config, files, frame, label, report);
+        if (channels.images.empty()) {
             report.problems.push_back(label + ": no readable channel image, nothing written");
             continue;
         }
-        // Sync check: every channel must have rendered the same snapshot.
-        bool agree = true;
-        for (const auto& m : metas)
-            if (m.snapshot_hash.empty() || m.snapshot_hash != metas.front().snapshot_hash) agree = false;
-        if (!agree) {
-            std::string msg = label + ": snapshot hashes disagree:";
-            for (size_t k = 0; k < metas.size(); ++k)
-                msg += " " + names[k] + "=" + (metas[k].snapshot_hash.empty() ? "(none)" : metas[k].snapshot_hash);
-            report.problems.push_back(msg);
-        }
-
+        check_snapshot_hashes(channels, label, report);
         std::vector<const Image*> ptrs;
-        for (const auto& im : images) ptrs.push_back(&im);
-        const Image dome = stitch_domemaster(config.dome, frusta, ptrs, size);
-
-        FrameMetadata out_meta;
-        out_meta.channel_id = -1;
-        out_meta.channel_name = "dome";
-        out_meta.frame = frame;
-        out_meta.sim_time_s = metas.front().sim_time_s;
-        out_meta.snapshot_hash = metas.front().snapshot_hash;
-        out_meta.renderer = metas.front().renderer;
-        // The frame's own exposure (the master's auto exposure varies it per frame; all channels
-        // share it), else the configured one.
-        const double exposure = metas.front().exposure > 0.0 ? metas.front().exposure : config.output.exposure;
-        const auto written = write_frame(out_dir, dome, out_meta, formats, exposure);
+        for (const auto& im : channels.images) ptrs.push_back(&im);
+        const Image dome = stitch_domemaster(config.dome, channels.frusta, ptrs, size);
+        const auto written = write_dome_frame(config, out_dir, frame, dome, channels.metas.front(), formats);
         report.written.insert(report.written.end(), written.begin(), written.end());
         report.frames.push_back(frame);
     }

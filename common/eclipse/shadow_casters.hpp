@@ -1,6 +1,6 @@
 #pragma once
-// Which bodies can shadow which, decided on the CPU in double (seed 000, sections 3.3.1 and
-// 3.3.3), and the per-receiver description the shaders consume (shading::EclipseCasters).
+// Which bodies can shadow which, decided on the CPU in double (Ekelin & Fernqvist 2009,
+// sections 3.3.1 and 3.3.3), and the per-receiver description the shaders consume (shading::EclipseCasters).
 //   - Static pairs come from the scene's shadow groups: the parent shadows its children, the
 //     children shadow the parent, siblings only when the group allows it.
 //   - Each frame a pair is kept only while the caster's penumbral cone can reach the

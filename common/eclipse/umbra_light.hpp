@@ -1,5 +1,5 @@
 #pragma once
-// The light a caster leaves deep in its umbra, per unit sunlight (seed 000, section 5.1.7: the
+// The light a caster leaves deep in its umbra, per unit sunlight (Ekelin & Fernqvist 2009, section 5.1.7: the
 // red Moon of a lunar eclipse). Sunlight grazing the caster's atmosphere is bent into the
 // umbra; its colour is the transmittance of the grazing path (tangent altitude
 // kUmbraRayAltitude_m, both halves: T(r, mu = 0)^2 at 680/550/440 nm taken as r/g/b), its

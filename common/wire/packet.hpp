@@ -75,7 +75,7 @@ struct Packet {
 
 // Why a datagram was refused; each reason has its own counter.
 // The first seven come from decoding one datagram; the last three from the session guard
-// (common/net/session_guard.hpp), which sees the sender's session and sequence.
+// (common/wire/session_guard.hpp), which sees the sender's session and sequence.
 enum class RejectReason {
     BadMagic,
     BadVersion,

@@ -43,53 +43,106 @@ const std::string& control_help() {
     return text;
 }
 
-ControlCommand parse_control_line(const std::string& line) {
+namespace {
+
+using Words = std::vector<std::string>;
+
+// The line's words, after the checks on its length and characters.
+Words split_control_line(const std::string& line) {
     if (line.size() > 1024)
         throw ControlError("line too long (" + std::to_string(line.size()) + " bytes, at most 1024)");
     for (unsigned char c : line)
         if (c < 0x20 && c != '\t' && c != '\r')
             throw ControlError("control character " + std::to_string(c) + " in the line");
     std::istringstream in(line);
-    std::vector<std::string> w;
+    Words w;
     for (std::string word; in >> word;) w.push_back(word);
     if (w.empty()) throw ControlError("empty line; " + control_help());
+    return w;
+}
+
+void parse_goto(const Words& w, ControlCommand& c) {
+    expect_count(w, 2, 3, "goto <body> [seconds]");
+    c.verb = ControlVerb::Goto;
+    c.body = w[1];
+    if (w.size() == 3) {
+        c.seconds = parse_number(w[2], "goto seconds");
+        if (*c.seconds < 0.0 || *c.seconds > 600.0) throw ControlError("goto seconds: must be 0..600, not " + w[2]);
+    }
+}
+
+void parse_mode(const Words& w, ControlCommand& c) {
+    expect_count(w, 2, 3, "mode orbit|fly|walk [body]");
+    c.verb = ControlVerb::Mode;
+    c.nav_mode = lower_case(w[1]);
+    if (c.nav_mode != "orbit" && c.nav_mode != "fly" && c.nav_mode != "walk")
+        throw ControlError("mode: \"" + w[1] + "\" is not one of orbit, fly, walk");
+    if (w.size() == 3) c.body = w[2];
+}
+
+void parse_time(const Words& w, ControlCommand& c) {
+    if (w.size() < 2) throw ControlError("usage: time rate <x> | time set <UTC>");
+    const std::string what = lower_case(w[1]);
+    if (what == "rate") {
+        expect_count(w, 3, 3, "time rate <x>");
+        c.verb = ControlVerb::TimeRate;
+        c.rate = parse_number(w[2], "time rate");
+        if (std::abs(c.rate) > 1e10) throw ControlError("time rate: " + w[2] + " is beyond +-1e10");
+    } else if (what == "set") {
+        expect_count(w, 3, 3, "time set <ISO-8601 UTC, e.g. 2024-04-08T18:17:00Z>");
+        c.verb = ControlVerb::TimeSet;
+        c.utc = w[2];
+        try {
+            c.sim_time_s = utc_iso_to_j2000_seconds(w[2]);
+        } catch (const std::exception& e) {
+            throw ControlError(std::string("time set: ") + e.what());
+        }
+    } else {
+        throw ControlError("time: \"" + w[1] + "\" is not rate or set");
+    }
+}
+
+void parse_set(const Words& w, ControlCommand& c) {
+    expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit <value>");
+    c.verb = ControlVerb::Set;
+    c.setting = lower_case(w[1]);
+    c.value = lower_case(w[2]);
+    if (c.setting == "shadow_mode") {
+        if (c.value != "show") {
+            const auto& n = shadow_mode_names();
+            if (std::find(n.begin(), n.end(), c.value) == n.end())
+                throw ControlError("set shadow_mode: \"" + w[2] +
+                                   "\" is not one of exact, fast, lut, illustrative, off, show");
+        }
+    } else if (c.setting == "exposure") {
+        if (c.value != "auto" && c.value != "show") {
+            const double x = parse_number(w[2], "set exposure");
+            if (!(x >= 1e-12) || x > 1e6) throw ControlError("set exposure: must be in [1e-12, 1e6], not " + w[2]);
+            c.number = x;
+        }
+    } else if (c.setting == "star_limit") {
+        if (c.value != "show") {
+            const double x = parse_number(w[2], "set star_limit");
+            if (x < -30.0 || x > 30.0) throw ControlError("set star_limit: must be -30..30, not " + w[2]);
+            c.number = x;
+        }
+    } else {
+        throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure or star_limit");
+    }
+}
+
+}  // namespace
+
+ControlCommand parse_control_line(const std::string& line) {
+    const Words w = split_control_line(line);
     ControlCommand c;
     const std::string verb = lower_case(w[0]);
     if (verb == "goto") {
-        expect_count(w, 2, 3, "goto <body> [seconds]");
-        c.verb = ControlVerb::Goto;
-        c.body = w[1];
-        if (w.size() == 3) {
-            c.seconds = parse_number(w[2], "goto seconds");
-            if (*c.seconds < 0.0 || *c.seconds > 600.0) throw ControlError("goto seconds: must be 0..600, not " + w[2]);
-        }
+        parse_goto(w, c);
     } else if (verb == "mode") {
-        expect_count(w, 2, 3, "mode orbit|fly|walk [body]");
-        c.verb = ControlVerb::Mode;
-        c.nav_mode = lower_case(w[1]);
-        if (c.nav_mode != "orbit" && c.nav_mode != "fly" && c.nav_mode != "walk")
-            throw ControlError("mode: \"" + w[1] + "\" is not one of orbit, fly, walk");
-        if (w.size() == 3) c.body = w[2];
+        parse_mode(w, c);
     } else if (verb == "time") {
-        if (w.size() < 2) throw ControlError("usage: time rate <x> | time set <UTC>");
-        const std::string what = lower_case(w[1]);
-        if (what == "rate") {
-            expect_count(w, 3, 3, "time rate <x>");
-            c.verb = ControlVerb::TimeRate;
-            c.rate = parse_number(w[2], "time rate");
-            if (std::abs(c.rate) > 1e10) throw ControlError("time rate: " + w[2] + " is beyond +-1e10");
-        } else if (what == "set") {
-            expect_count(w, 3, 3, "time set <ISO-8601 UTC, e.g. 2024-04-08T18:17:00Z>");
-            c.verb = ControlVerb::TimeSet;
-            c.utc = w[2];
-            try {
-                c.sim_time_s = utc_iso_to_j2000_seconds(w[2]);
-            } catch (const std::exception& e) {
-                throw ControlError(std::string("time set: ") + e.what());
-            }
-        } else {
-            throw ControlError("time: \"" + w[1] + "\" is not rate or set");
-        }
+        parse_time(w, c);
     } else if (verb == "play") {
         expect_count(w, 1, 2, "play [show.json]");
         c.verb = ControlVerb::Play;
@@ -104,32 +157,7 @@ ControlCommand parse_control_line(const std::string& line) {
                  : verb == "quit"   ? ControlVerb::Quit
                                     : ControlVerb::Help;
     } else if (verb == "set") {
-        expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit <value>");
-        c.verb = ControlVerb::Set;
-        c.setting = lower_case(w[1]);
-        c.value = lower_case(w[2]);
-        if (c.setting == "shadow_mode") {
-            if (c.value != "show") {
-                const auto& n = shadow_mode_names();
-                if (std::find(n.begin(), n.end(), c.value) == n.end())
-                    throw ControlError("set shadow_mode: \"" + w[2] +
-                                       "\" is not one of exact, fast, lut, illustrative, off, show");
-            }
-        } else if (c.setting == "exposure") {
-            if (c.value != "auto" && c.value != "show") {
-                const double x = parse_number(w[2], "set exposure");
-                if (!(x >= 1e-12) || x > 1e6) throw ControlError("set exposure: must be in [1e-12, 1e6], not " + w[2]);
-                c.number = x;
-            }
-        } else if (c.setting == "star_limit") {
-            if (c.value != "show") {
-                const double x = parse_number(w[2], "set star_limit");
-                if (x < -30.0 || x > 30.0) throw ControlError("set star_limit: must be -30..30, not " + w[2]);
-                c.number = x;
-            }
-        } else {
-            throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure or star_limit");
-        }
+        parse_set(w, c);
     } else {
         throw ControlError("unknown command \"" + w[0] + "\"; " + control_help());
     }

@@ -129,16 +129,7 @@ void ControlServer::loop() {
     while (!stop_) {
         std::vector<pollfd> fds;
         std::vector<uint64_t> ids;
-        {
-            std::lock_guard lock(mutex_);
-            fds.push_back({wake_pipe_[0], POLLIN, 0});
-            if (listen_fd_ >= 0) fds.push_back({listen_fd_, POLLIN, 0});
-            for (const auto& c : clients_) {
-                if (c.eof || c.outstanding >= kMaxOutstanding) continue;
-                fds.push_back({c.fd, POLLIN, 0});
-                ids.push_back(c.id);
-            }
-        }
+        build_poll_set(fds, ids);
         if (poll(fds.data(), fds.size(), 500) < 0) {
             if (errno == EINTR) continue;
             spdlog::error("control: poll: {}", std::strerror(errno));
@@ -148,64 +139,80 @@ void ControlServer::loop() {
         size_t first_client = 1;
         if (listen_fd_ >= 0) {
             first_client = 2;
-            if (fds[1].revents & POLLIN) {
-                const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
-                if (fd < 0 && errno != EAGAIN && errno != EINTR) {
-                    spdlog::warn("control: accept: {}", std::strerror(errno));  // e.g. out of descriptors
-                    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-                }
-                if (fd >= 0) {
-                    std::lock_guard lock(mutex_);
-                    if (clients_.size() >= kMaxClients) {
-                        const char* msg = "error too many control clients\n";
-                        [[maybe_unused]] auto n = send(fd, msg, std::strlen(msg), MSG_NOSIGNAL | MSG_DONTWAIT);
-                        close(fd);
-                    } else {
-                        clients_.push_back({next_id_++, fd, fd, false});
-                        spdlog::debug("control: client {} connected", clients_.back().id);
-                    }
-                }
-            }
+            if (fds[1].revents & POLLIN) accept_client();
         }
-        for (size_t i = first_client; i < fds.size(); ++i) {
-            if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL))) continue;
-            char buf[2048];
-            const ssize_t n = (fds[i].revents & POLLNVAL) ? 0 : read(fds[i].fd, buf, sizeof buf);
-            std::lock_guard lock(mutex_);
-            size_t idx = 0;
-            while (idx < clients_.size() && clients_[idx].id != ids[i - first_client]) ++idx;
-            if (idx == clients_.size()) continue;
-            if (n <= 0) {
-                if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-                if (clients_[idx].outstanding == 0)
-                    close_client(idx);
-                else
-                    clients_[idx].eof = true;  // answered first, then forgotten (reply())
-                continue;
+        for (size_t i = first_client; i < fds.size(); ++i)
+            if (fds[i].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL)) read_client(fds[i], ids[i - first_client]);
+    }
+}
+
+void ControlServer::build_poll_set(std::vector<pollfd>& fds, std::vector<uint64_t>& ids) {
+    std::lock_guard lock(mutex_);
+    fds.push_back({wake_pipe_[0], POLLIN, 0});
+    if (listen_fd_ >= 0) fds.push_back({listen_fd_, POLLIN, 0});
+    for (const auto& c : clients_) {
+        if (c.eof || c.outstanding >= kMaxOutstanding) continue;
+        fds.push_back({c.fd, POLLIN, 0});
+        ids.push_back(c.id);
+    }
+}
+
+void ControlServer::accept_client() {
+    const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0 && errno != EAGAIN && errno != EINTR) {
+        spdlog::warn("control: accept: {}", std::strerror(errno));  // e.g. out of descriptors
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    if (fd < 0) return;
+    std::lock_guard lock(mutex_);
+    if (clients_.size() >= kMaxClients) {
+        const char* msg = "error too many control clients\n";
+        [[maybe_unused]] auto n = send(fd, msg, std::strlen(msg), MSG_NOSIGNAL | MSG_DONTWAIT);
+        close(fd);
+    } else {
+        clients_.push_back({next_id_++, fd, fd, false});
+        spdlog::debug("control: client {} connected", clients_.back().id);
+    }
+}
+
+void ControlServer::read_client(const pollfd& p, uint64_t id) {
+    char buf[2048];
+    const ssize_t n = (p.revents & POLLNVAL) ? 0 : read(p.fd, buf, sizeof buf);
+    std::lock_guard lock(mutex_);
+    size_t idx = 0;
+    while (idx < clients_.size() && clients_[idx].id != id) ++idx;
+    if (idx == clients_.size()) return;
+    if (n <= 0) {
+        if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
+        if (clients_[idx].outstanding == 0)
+            close_client(idx);
+        else
+            clients_[idx].eof = true;  // answered first, then forgotten (reply())
+        return;
+    }
+    split_lines(clients_[idx], buf, static_cast<size_t>(n));
+}
+
+void ControlServer::split_lines(Client& c, const char* data, size_t n) {
+    for (size_t k = 0; k < n; ++k) {
+        const char ch = data[k];
+        if (ch == '\n') {
+            if (c.discarding) {
+                c.discarding = false;
+                ++refused_;
+                pending_.push_back({c.id, std::string(kMaxLine + 1, 'x'), monotonic_ns()});  // answered as too long
+                ++c.outstanding;
+            } else {
+                if (!c.buffer.empty() && c.buffer.back() == '\r') c.buffer.pop_back();
+                pending_.push_back({c.id, std::move(c.buffer), monotonic_ns()});
+                ++c.outstanding;
             }
-            Client& c = clients_[idx];
-            for (ssize_t k = 0; k < n; ++k) {
-                const char ch = buf[k];
-                if (ch == '\n') {
-                    if (c.discarding) {
-                        c.discarding = false;
-                        ++refused_;
-                        pending_.push_back(
-                            {c.id, std::string(kMaxLine + 1, 'x'), monotonic_ns()});  // answered as too long
-                        ++c.outstanding;
-                    } else {
-                        if (!c.buffer.empty() && c.buffer.back() == '\r') c.buffer.pop_back();
-                        pending_.push_back({c.id, std::move(c.buffer), monotonic_ns()});
-                        ++c.outstanding;
-                    }
-                    c.buffer.clear();
-                } else if (!c.discarding) {
-                    c.buffer.push_back(ch);
-                    if (c.buffer.size() > kMaxLine) {
-                        c.discarding = true;
-                        c.buffer.clear();
-                    }
-                }
+            c.buffer.clear();
+        } else if (!c.discarding) {
+            c.buffer.push_back(ch);
+            if (c.buffer.size() > kMaxLine) {
+                c.discarding = true;
+                c.buffer.clear();
             }
         }
     }

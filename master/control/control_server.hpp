@@ -6,6 +6,8 @@
 // forgotten, its pending replies dropped; one whose input ended (stdin at EOF, a half-closed
 // socket) is kept until its lines are answered. Replies never block the frame loop: a client that
 // does not read loses them (and, on a socket, the connection).
+#include <poll.h>
+
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -51,6 +53,12 @@ private:
     static constexpr size_t kMaxOutstanding = 64;
     void open_listener(const std::string& path);
     void loop();
+    // Steps of loop(): the descriptors to wait on (ids: the clients', in the same order), a new
+    // connection, one client's input (split into pending lines, under the lock).
+    void build_poll_set(std::vector<pollfd>& fds, std::vector<uint64_t>& ids);
+    void accept_client();
+    void read_client(const pollfd& p, uint64_t id);
+    void split_lines(Client& c, const char* data, size_t n);
     void close_client(size_t index);
 
     std::string path_;

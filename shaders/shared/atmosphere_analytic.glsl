@@ -1,4 +1,5 @@
-// The fast analytic atmosphere of seed 000 (UniView, after Hoffman/Preetham and Stokholm Nielsen),
+// The fast analytic atmosphere of UniView (Ekelin & Fernqvist 2009, sections 2.4.3 and 3.2.1, after
+// Hoffman & Preetham 2002 and Stokholm Nielsen 2003),
 // shared by GLSL and C++. One scale height for both species; optical depth from the mean density
 // of three points (start, middle, end) times the path length; in-scatter
 //   L_in = (b_R F_R + b_M F_M) / (b_R + b_M) * E_sun * (1 - exp(-(b_R + b_M) S)),

@@ -2,7 +2,7 @@
 // r = distance of the ray origin from the planet centre, mu = cosine of the ray's zenith angle.
 // Discriminants are formed as (R - r)(R + r) + (r mu)^2: in float, R^2 - r^2 would lose the
 // altitude of a camera near the ground (R^2 ~ 4e13 has an ulp of 4e6 m^2), and the ground/sky
-// decision at mu_horizon +- 1e-6 with it (notes, hard case 1).
+// decision at mu_horizon +- 1e-6 with it.
 
 float atm_discriminant(float r, float mu, float radius) {
     float rm = r * mu;
@@ -19,7 +19,8 @@ float atm_distance_to_ground(AtmosphereParams a, float r, float mu) {
     return max(-r * mu - d, 0.0);
 }
 // True when the ray meets the ground: mu below the horizon's cosine -sqrt(1 - (bottom/r)^2).
-// Callers decide this once per ray and pass the flag on (notes, hard case 1).
+// Callers decide this once per ray and pass the flag on, as Bruneton 2017 does: deciding again
+// from rounded (r, mu) can flip the answer for rays near the horizon.
 bool atm_ray_hits_ground(AtmosphereParams a, float r, float mu) {
     return mu < 0.0 && atm_discriminant(r, mu, a.bottom_radius) > 0.0 && r >= a.bottom_radius;
 }
@@ -38,7 +39,7 @@ AtmosphereRayStart atm_ray_start(AtmosphereParams a, float d, vec3 v, vec3 c_hat
     s.nu = dot(v, sun);
     s.offset = 0.0;
     s.valid = true;
-    float r_cam = max(d, a.bottom_radius + 1.0);  // hard case 7: never below the ground
+    float r_cam = max(d, a.bottom_radius + 1.0);  // never below the ground
     if (r_cam <= a.top_radius) {
         s.r = r_cam;
         s.mu = -dot(v, c_hat);

@@ -17,7 +17,7 @@ vec2 atm_transmittance_uv(AtmosphereParams a, float r, float mu, vec2 size) {
     float d = atm_distance_to_top(a, r, mu);
     float d_min = a.top_radius - r;
     float d_max = rho + H;
-    float x_mu = (d_max > d_min) ? (d - d_min) / (d_max - d_min) : 0.0;  // hard case 4
+    float x_mu = (d_max > d_min) ? (d - d_min) / (d_max - d_min) : 0.0;  // no 0/0 for a degenerate range
     float x_r = rho / H;
     return vec2(atm_texcoord_from_unit(clamp(x_mu, 0.0, 1.0), size.x),
                 atm_texcoord_from_unit(clamp(x_r, 0.0, 1.0), size.y));

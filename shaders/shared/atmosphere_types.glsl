@@ -26,7 +26,7 @@ struct AtmosphereParams {
 // looking along the unit v; c_hat is the unit direction from the camera to the centre and sun the
 // unit direction to the Sun (all in one frame; the CPU computes d and c_hat in double). Only
 // angles and ratios enter, never positions, so the result stays exact in float for a camera 1 AU
-// away (notes, hard cases 5 and 11): the entry point is located from the ray's closest approach
+// away (a float position there steps by 16 km): the entry point is located from the ray's closest approach
 // to the centre, not by subtracting large distances.
 struct AtmosphereRayStart {
     float r;       // radius of the start (the camera, or the entry into the top sphere)

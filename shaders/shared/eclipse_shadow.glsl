@@ -116,7 +116,7 @@ float eclipse_visible_exact(float a, float s, float u) {
     return clamp(1.0 - occluded / total, 0.0, 1.0);
 }
 
-// Fast mode (seed 000, section 3.3.2, in angular terms): the visible fraction falls linearly
+// Fast mode (Ekelin & Fernqvist 2009, section 3.3.2, in angular terms): the visible fraction falls linearly
 // across the penumbra from first contact (s = 1 + a) to the umbra/antumbra edge (s = |1 - a|),
 // whose corner is rounded by a Butterworth factor of order n with its cut-off at that edge;
 // inside, a uniform (not limb-darkened) disc: 0 in the umbra, 1 - a^2 in the antumbra.
@@ -205,8 +205,9 @@ int eclipse_region(float a, float s) {
     return a >= 1.0 ? 0 : 1;
 }
 
-// Uniform tints of seed 000 Figure 4.9 (umbra red, antumbra blue, penumbra yellow): the surface
-// keeps full sunlight times the tint, so the whole penumbra shows.
+// Uniform tints, the illustrative mode of Ekelin & Fernqvist 2009 (section 3.3.2, Figure 4.9): umbra
+// red, antumbra blue, penumbra yellow; the surface keeps full sunlight times the tint, so the whole
+// penumbra shows.
 vec3 eclipse_region_tint(int region) {
     if (region == 0) {
         return vec3(0.85, 0.12, 0.10);

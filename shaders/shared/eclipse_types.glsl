@@ -3,7 +3,7 @@
 
 // Shadow modes (RenderSettings::flags carries one per frame, switchable at runtime).
 const int ECLIPSE_MODE_EXACT = 0;         // limb-darkened disc overlap, Gauss-Legendre in radius
-const int ECLIPSE_MODE_FAST = 1;          // the seed's linear penumbra, Butterworth umbra edge
+const int ECLIPSE_MODE_FAST = 1;          // UniView's linear penumbra, Butterworth umbra edge
 const int ECLIPSE_MODE_LUT = 2;           // 2D table: radius ratio x normalised separation
 const int ECLIPSE_MODE_ILLUSTRATIVE = 3;  // umbra, antumbra and penumbra as uniform tints
 

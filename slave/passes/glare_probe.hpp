@@ -1,6 +1,7 @@
 #pragma once
-// Glare visibility measured where it is rendered, in the pass list between the occluders and
-// what does not occlude (occluders -> query -> atmosphere -> glare). For each glare source of the
+// Glare visibility measured where it is rendered (Ekelin & Fernqvist 2009, sections 3.1.1 and
+// 3.1.3), in the pass list between the occluders and what does not occlude (occluders -> query ->
+// atmosphere -> glare). For each glare source of the
 // snapshot whose disc may reach this channel, the probe draws the occluders (the bodies, depth
 // only, by true distance) into a small view centred on the source, then counts the source's
 // disc with two kinds of occlusion query: without depth test (the total) and with it, per wedge

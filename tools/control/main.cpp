@@ -40,7 +40,7 @@ bool read_line(int fd, std::string& pending, std::string& line, int timeout_ms) 
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Send control commands to a Cupola master (see docs/CONTROL.md)"};
+    CLI::App app{"Send control commands to a Cupola master (the command help lists them; see README.md)"};
     std::string socket_path;
     std::vector<std::string> words;
     double timeout_s = 10.0;

@@ -1,4 +1,4 @@
-#include "scene_atmospheres.hpp"
+#include "atmosphere/scene_atmospheres.hpp"
 #include "scene/snapshot_bodies.hpp"
 
 namespace cupola {

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "atmosphere/production_model.hpp"
+#include "atmosphere/scene_atmospheres.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "eclipse/shadow_casters.hpp"
-#include "scene_atmospheres.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {

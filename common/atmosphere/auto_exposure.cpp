@@ -1,4 +1,4 @@
-#include "auto_exposure.hpp"
+#include "atmosphere/auto_exposure.hpp"
 
 #include <algorithm>
 #include <cmath>

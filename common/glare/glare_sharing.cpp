@@ -1,4 +1,4 @@
-#include "glare_sharing.hpp"
+#include "glare/glare_sharing.hpp"
 
 #include <algorithm>
 #include <cmath>

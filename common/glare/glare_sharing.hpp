@@ -1,13 +1,13 @@
 #pragma once
-// The cluster-wide glare visibility (seed 000, section 5.1.1: the slaves report, the master
-// shares). Each channel reports, per source, the solid angle of the source's disc in the
+// The cluster-wide glare visibility (Ekelin & Fernqvist 2009, section 5.1.1: the slaves
+// report, the master shares). Each channel reports, per source, the solid angle of the source's disc in the
 // directions it owns (every dome direction has exactly one owner, so nothing counts twice),
 // total and unoccluded per wedge. For frame N+1 the master sums frame N's reports:
 //   visible fraction = sum(visible) / sum(total), offset toward the visible part from the wedges,
 // and writes them into the snapshot, so the shared values lag the queries by one frame. Where a
 // channel that may see the source did not report frame N (lost report, dropped or restarted
 // slave), or no channel saw it, the snapshot keeps the analytic value of spherical occluders
-// (master/glare_sources), so the glare neither freezes nor flickers.
+// (common/glare/glare_sources), so the glare neither freezes nor flickers.
 #include <map>
 
 #include "config/cluster_config.hpp"

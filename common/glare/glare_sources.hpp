@@ -1,7 +1,7 @@
 #pragma once
 // Which sources get a glare this frame, how bright they are at the camera, and how much of each
 // spherical occluders hide (the analytic visibility every snapshot starts from; the measured
-// one replaces it when the whole cluster reported, master/glare_sharing).
+// one replaces it when the whole cluster reported, common/glare/glare_sharing).
 //   - Stars of the scene (the Sun): always, irradiance = disc radiance x pi sin^2(alpha) x
 //     limb-darkened mean.
 //   - Planets and moons smaller than kMaxBodyRadius: Lambert spheres lit by the Sun, (2/3) albedo E_sun (R/d)^2
@@ -13,9 +13,9 @@
 #include <memory>
 #include <vector>
 
+#include "atmosphere/scene_atmospheres.hpp"
 #include "config/scene_config.hpp"
 #include "scene/star_catalog.hpp"
-#include "scene_atmospheres.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
@@ -37,6 +37,12 @@ public:
     static constexpr double kMaxBodyRadius = 0.0175;  // planets and moons up to 1 degree across the radius
 
 private:
+    struct Candidate;  // a source with its rank, before the brightest max_sources are kept
+    // Steps of select(): the scene's bodies (stars, planets, moons), then the catalogue stars.
+    void add_body_candidates(const Snapshot& snap, std::vector<Candidate>& candidates) const;
+    void add_catalog_candidates(const Snapshot& snap, std::vector<Candidate>& candidates) const;
+    glm::dvec3 transmittance(const Snapshot& snap, const glm::dvec3& dir) const;  // 1 without atmospheres
+
     const SceneConfig* scene_;
     const SceneAtmospheres* atmospheres_;
     std::vector<Star> stars_;
