@@ -84,7 +84,7 @@ shading::EclipseCasters ShadowCasting::casters_for(const Snapshot& snap, uint16_
     const EclipseSun sun = eclipse_sun(scene_, snap);
     const BodyState* receiver_state = find_body(snap, receiver);
     const glm::dvec3 receiver_pos = receiver_state ? receiver_state->position_m : glm::dvec3(0.0);
-    e.mode = static_cast<int>(shadow_mode_of(snap.settings.flags));
+    e.mode = static_cast<int>(shadow_mode_of(snap.settings.flags));  // ShadowMode values are ECLIPSE_MODE_*
     e.limb_u = static_cast<float>(sun.limb_u);
     e.butterworth_order = static_cast<float>(scene_.shadows.butterworth_order);
     e.sun_position = glm::vec3(to_frame * (sun.position_m - receiver_pos));

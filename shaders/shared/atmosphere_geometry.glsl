@@ -1,27 +1,19 @@
 // Ray-sphere geometry of the atmosphere in the (r, mu) parametrisation (shared by GLSL and C++):
-// r = distance of the ray origin from the planet centre, mu = cosine of the ray's zenith angle.
-// Discriminants are formed as (R - r)(R + r) + (r mu)^2: in float, R^2 - r^2 would lose the
-// altitude of a camera near the ground (R^2 ~ 4e13 has an ulp of 4e6 m^2), and the ground/sky
-// decision at mu_horizon +- 1e-6 with it (notes, hard case 1).
+// r_m = distance of the ray origin from the planet centre, mu = cosine of the ray's zenith angle.
+// The intersections are those of ray_sphere.glsl (the reference integrator runs the same
+// routines in double) with the atmosphere's two spheres.
 
-float atm_discriminant(float r, float mu, float radius) {
-    float rm = r * mu;
-    return (radius - r) * (radius + r) + rm * rm;
-}
 // Distance to the far intersection with the top sphere (the exit, for an origin inside).
-float atm_distance_to_top(AtmosphereParams a, float r, float mu) {
-    float d = sqrt(max(atm_discriminant(r, mu, a.top_radius), 0.0));
-    return max(-r * mu + d, 0.0);
+float atm_distance_to_top(AtmosphereParams a, float r_m, float mu) {
+    return ray_sphere_far_m(r_m, mu, a.top_radius);
 }
 // Distance to the near intersection with the ground sphere.
-float atm_distance_to_ground(AtmosphereParams a, float r, float mu) {
-    float d = sqrt(max(atm_discriminant(r, mu, a.bottom_radius), 0.0));
-    return max(-r * mu - d, 0.0);
+float atm_distance_to_ground(AtmosphereParams a, float r_m, float mu) {
+    return ray_sphere_near_m(r_m, mu, a.bottom_radius);
 }
-// True when the ray meets the ground: mu below the horizon's cosine -sqrt(1 - (bottom/r)^2).
-// Callers decide this once per ray and pass the flag on (notes, hard case 1).
-bool atm_ray_hits_ground(AtmosphereParams a, float r, float mu) {
-    return mu < 0.0 && atm_discriminant(r, mu, a.bottom_radius) > 0.0 && r >= a.bottom_radius;
+// True when the ray meets the ground (ray_hits_sphere).
+bool atm_ray_hits_ground(AtmosphereParams a, float r_m, float mu) {
+    return ray_hits_sphere(r_m, mu, a.bottom_radius);
 }
 // Radius and zenith cosines a distance t along a ray that starts at (r, mu), with the Sun at
 // zenith cosine mu_s and nu = cos(view, sun) (Bruneton's law of cosines form).

@@ -1,11 +1,14 @@
 // Plain data types of the shared eclipse code (shared by GLSL and C++; see atmosphere_types.glsl
 // for why types live apart from the functions).
 
-// Shadow modes (RenderSettings::flags carries one per frame, switchable at runtime).
+// Shadow modes (RenderSettings::flags carries one per frame, switchable at runtime). The only
+// definition of the numbers: C++'s ShadowMode (common/config/scene_config.hpp) takes its values
+// from these.
 const int ECLIPSE_MODE_EXACT = 0;         // limb-darkened disc overlap, Gauss-Legendre in radius
 const int ECLIPSE_MODE_FAST = 1;          // the seed's linear penumbra, Butterworth umbra edge
 const int ECLIPSE_MODE_LUT = 2;           // 2D table: radius ratio x normalised separation
 const int ECLIPSE_MODE_ILLUSTRATIVE = 3;  // umbra, antumbra and penumbra as uniform tints
+const int ECLIPSE_MODE_OFF = 4;           // no shadows: the CPU sends no casters (count = 0)
 
 const int ECLIPSE_MAX_CASTERS = 4;  // per receiver in one pass
 
