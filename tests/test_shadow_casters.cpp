@@ -147,12 +147,12 @@ TEST(ShadowCasting, SelectsTheMoonOnlyDuringTheEclipse) {
     const shading::EclipseCasters e = casting.casters_for(lunar, moon, glm::dmat3(1.0));
     ASSERT_EQ(e.count, 1);
     EXPECT_EQ(e.mode, static_cast<int>(ShadowMode::Lookup));
-    EXPECT_FLOAT_EQ(e.caster_radius[0], static_cast<float>(s.find("earth")->radius_m));
+    EXPECT_FLOAT_EQ(e.caster_radius_m[0], static_cast<float>(s.find("earth")->radius_m));
     EXPECT_EQ(e.umbra_light[0], glm::vec3(0.1f, 0.01f, 0.001f));
     const glm::dvec3 rel = body_state(*s.find("earth"), lunar.sim_time_s).position_m -
                            body_state(*s.find("moon"), lunar.sim_time_s).position_m;
-    EXPECT_NEAR(glm::length(glm::dvec3(e.caster_position[0]) - rel), 0.0, 1e-6 * glm::length(rel));
-    EXPECT_FLOAT_EQ(e.sun_radius, static_cast<float>(s.find("sun")->radius_m));
+    EXPECT_NEAR(glm::length(glm::dvec3(e.caster_position_m[0]) - rel), 0.0, 1e-6 * glm::length(rel));
+    EXPECT_FLOAT_EQ(e.sun_radius_m, static_cast<float>(s.find("sun")->radius_m));
 }
 
 TEST(ShadowConfig, ErrorsNameTheField) {

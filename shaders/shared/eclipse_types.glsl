@@ -14,32 +14,32 @@ const int ECLIPSE_MAX_CASTERS = 4;  // per receiver in one pass
 
 // One caster seen from a receiver point, in units of the Sun's apparent (angular) radius.
 struct EclipseDiscs {
-    float ratio;       // a = occluder angular radius / Sun angular radius
-    float separation;  // s = angle between the centres / Sun angular radius
-    float sun_radius;  // the Sun's angular radius, radians
+    float ratio;           // a = occluder angular radius / Sun angular radius
+    float separation;      // s = angle between the centres / Sun angular radius
+    float sun_radius_rad;  // the Sun's angular radius
 };
 
 // Everything a pass needs to shadow one receiver: positions are relative to the receiver's
 // centre in metres (differences taken in double on the CPU, then rounded to float), so a point
 // on the receiver is just normal * radius and no large coordinate ever reaches the GPU.
 struct EclipseCasters {
-    int count;                 // 0: nothing can shadow this receiver this frame (skip all work)
-    int mode;                  // ECLIPSE_MODE_*
-    float limb_u;              // the Sun's linear limb-darkening coefficient
-    float butterworth_order;   // fast mode: sharpness n of the umbra edge
-    vec3 sun_position;         // Sun centre
-    float sun_radius;
-    vec3 caster_position[ECLIPSE_MAX_CASTERS];  // caster centres
-    float caster_radius[ECLIPSE_MAX_CASTERS];
-    vec3 umbra_light[ECLIPSE_MAX_CASTERS];  // light left deep in the caster's umbra per unit
-                                            // sunlight (refraction through its atmosphere), rgb
+    int count;                // 0: nothing can shadow this receiver this frame (skip all work)
+    int mode;                 // ECLIPSE_MODE_*
+    float limb_u;             // the Sun's linear limb-darkening coefficient
+    float butterworth_order;  // fast mode: sharpness n of the umbra edge
+    vec3 sun_position_m;      // Sun centre
+    float sun_radius_m;
+    vec3 caster_position_m[ECLIPSE_MAX_CASTERS];  // caster centres
+    float caster_radius_m[ECLIPSE_MAX_CASTERS];
+    vec3 umbra_light[ECLIPSE_MAX_CASTERS];        // light left deep in the caster's umbra per unit
+                                                  // sunlight (refraction through its atmosphere), rgb
 };
 
 // A straight path through a receiver's shadows (an atmosphere's view ray): the point at
-// distance t along it is origin + dir * t, relative to the receiver's centre.
+// distance t_m along it is origin_m + dir * t_m, relative to the receiver's centre.
 struct EclipseRay {
     EclipseCasters casters;
     vec2 lut_size;
-    vec3 origin;
+    vec3 origin_m;
     vec3 dir;
 };

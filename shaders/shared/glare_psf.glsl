@@ -87,12 +87,12 @@ float glare_streaks(GlareParams p, float phi_rad) {
 // times the curvature factor (sin(theta0) / theta0) exp(-w^2 / 2), which is exact for a ring
 // well away from the pole (the Gaussian over the whole line against sin). Good to ~w^2 / 6 at the
 // pole, and to < 1e-3 in between for w <= 0.1 rad (tested to 1 %).
-float glare_ring(float theta_rad, float theta0, float w) {
-    float q = theta0 / w;
-    float planar = w * w * exp(-0.5 * q * q) + 1.25331414 * theta0 * w * (1.0 + erf_approx(0.70710678 * q));
-    float sinc = theta0 > 1e-6 ? sin(theta0) / theta0 : 1.0;
-    float norm = 2.0 * CUPOLA_PI * planar * sinc * exp(-0.5 * w * w);
-    float d = (theta_rad - theta0) / w;
+float glare_ring(float theta_rad, float theta0_rad, float w_rad) {
+    float q = theta0_rad / w_rad;
+    float planar = w_rad * w_rad * exp(-0.5 * q * q) + 1.25331414 * theta0_rad * w_rad * (1.0 + erf_approx(0.70710678 * q));
+    float sinc = theta0_rad > 1e-6 ? sin(theta0_rad) / theta0_rad : 1.0;
+    float norm = 2.0 * CUPOLA_PI * planar * sinc * exp(-0.5 * w_rad * w_rad);
+    float d = (theta_rad - theta0_rad) / w_rad;
     return exp(-0.5 * d * d) / norm;
 }
 
