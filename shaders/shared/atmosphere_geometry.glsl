@@ -1,7 +1,8 @@
 // Ray-sphere geometry of the atmosphere in the (r, mu) parametrisation (shared by GLSL and C++):
 // r_m = distance of the ray origin from the planet centre, mu = cosine of the ray's zenith angle.
 // The intersections are those of ray_sphere.glsl (the reference integrator runs the same
-// routines in double) with the atmosphere's two spheres.
+// routines in double) with the atmosphere's two spheres; angles come from star_psf.glsl's
+// angle_between_units.
 
 // Distance to the far intersection with the top sphere (the exit, for an origin inside).
 float atm_distance_to_top(AtmosphereParams a, float r_m, float mu) {
@@ -15,7 +16,7 @@ float atm_distance_to_ground(AtmosphereParams a, float r_m, float mu) {
 bool atm_ray_hits_ground(AtmosphereParams a, float r_m, float mu) {
     return ray_hits_sphere(r_m, mu, a.bottom_radius_m);
 }
-// Radius and zenith cosines a distance t along a ray that starts at (r, mu), with the Sun at
+// Radius and zenith cosines a distance t_m along a ray that starts at (r_m, mu), with the Sun at
 // zenith cosine mu_s and nu = cos(view, sun) (Bruneton's law of cosines form).
 float atm_radius_at(float r_m, float mu, float t_m) {
     return sqrt(max(t_m * t_m + 2.0 * r_m * mu * t_m + r_m * r_m, 0.0));

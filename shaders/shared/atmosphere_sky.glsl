@@ -32,7 +32,7 @@ AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 t
     return s;
 }
 
-// In-scatter and transmittance along the ray from (r, mu) over [0, t_end] in `samples` steps.
+// In-scatter and transmittance along the ray from (r_m, mu) over [0, t_end_m] in `samples` steps.
 // The steps are concentrated (quadratically) toward the ray's closest approach to the planet
 // centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a share
 // of the steps proportional to its length, at least one. `shadow` (its casters may be none)
@@ -97,8 +97,8 @@ vec3 atm_compute_irradiance(AtmosphereParams a, sampler2D trans, vec2 trans_size
 }
 
 // Length of the atmospheric part of a camera ray (see atm_ray_start), from its start: to the
-// ground, the top of the atmosphere, or scene geometry t_geometry metres from the camera
-// (t_geometry < 0: none); 0 when the ray misses the atmosphere. Every model ends rays here.
+// ground, the top of the atmosphere, or scene geometry t_geometry_m from the camera
+// (t_geometry_m < 0: none); 0 when the ray misses the atmosphere. Every model ends rays here.
 float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geometry_m) {
     if (!st.valid) return 0.0;
     bool ground = atm_ray_hits_ground(a, st.r_m, st.mu);
@@ -108,7 +108,7 @@ float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geo
 }
 
 // A whole view ray from a camera: in-scatter and transmittance over atm_view_ray_length, with
-// the sunlight dimmed by the planet's eclipse shadows; shadow.origin is the ray's start (the
+// the sunlight dimmed by the planet's eclipse shadows; shadow.origin_m is the ray's start (the
 // camera moved st.offset along v), relative to the planet centre, and shadow.dir = v.
 AtmosphereSegment atm_view_ray_shadowed(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
                                         vec2 ms_size, bool use_ms, AtmosphereRayStart st, float t_geometry_m,

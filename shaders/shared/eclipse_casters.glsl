@@ -19,7 +19,7 @@ EclipseCasters eclipse_no_casters() {
     return e;
 }
 
-// Light factor (rgb, 1 = full sunlight) at the point p. A caster leaves f of the Sun's light
+// Light factor (rgb, 1 = full sunlight) at the point p_m. A caster leaves f of the Sun's light
 // plus, over the part it hides, its umbra light (sunlight bent into the shadow by the caster's
 // atmosphere: the red Moon of a lunar eclipse). Illustrative mode returns the region tint.
 vec3 eclipse_light(EclipseCasters e, sampler2D lut, vec2 lut_size, vec3 p_m) {
@@ -48,7 +48,7 @@ EclipseRay eclipse_ray(EclipseCasters casters, vec2 lut_size, vec3 origin_m, vec
     return r;
 }
 
-// Light factor at distance t along the ray (1 when no caster is active).
+// Light factor at distance t_m along the ray (1 when no caster is active).
 vec3 eclipse_light_along(EclipseRay r, sampler2D lut, float t_m) {
     if (r.casters.count == 0) {
         return vec3(1.0);

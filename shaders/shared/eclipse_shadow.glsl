@@ -5,11 +5,12 @@
 // (antumbra, a point beyond the umbra apex). Every function returns the visible fraction of the
 // Sun's light in [0, 1] and never increases as the discs close (s decreasing).
 
-// The apparent discs of the Sun and one caster seen from a point; to_sun and to_caster run from
-// the point to the centres (any one length unit), radii in the same unit. A caster behind the
-// point or beyond the Sun cannot occlude: s is set past first contact. Angles use asin of
-// ratios and the chord 2 asin(|u1 - u2| / 2), never acos of a dot product (exact for the
-// 0.25-degree discs of the Sun and Moon in float).
+// The apparent discs of the Sun and one caster seen from a point; to_sun_m and to_caster_m run
+// from the point to the centres, radii in the same unit (metres everywhere in Cupola; only ratios
+// enter, so any one length unit gives the same discs). A caster behind the point or beyond the
+// Sun cannot occlude: s is set past first contact. Angles use asin of ratios and the chord
+// (angle_between_units, star_psf.glsl), never acos of a dot product (exact for the 0.25-degree
+// discs of the Sun and Moon in float).
 EclipseDiscs eclipse_discs(vec3 to_sun_m, float sun_radius_m, vec3 to_caster_m, float caster_radius_m) {
     EclipseDiscs d;
     float ds = length(to_sun_m);

@@ -80,7 +80,7 @@ float glare_streaks(GlareParams p, float phi_rad) {
     return (1.0 - c) + c * h * tri * 20.0;  // 20 = 1 / 0.05
 }
 
-// A Gaussian ring of radius theta0 and sigma w on the sphere, per sr, integral 1. The
+// A Gaussian ring of radius theta0_rad and sigma w_rad on the sphere, per sr, integral 1. The
 // normalisation N = integral_0^pi exp(-(theta - theta0)^2 / 2 w^2) 2 pi sin(theta) dtheta is the
 // flat (sin theta ~ theta) integral from 0, exact:
 //   w^2 exp(-theta0^2 / 2 w^2) + sqrt(pi / 2) theta0 w (1 + erf(theta0 / (sqrt(2) w)))

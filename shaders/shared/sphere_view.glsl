@@ -1,4 +1,4 @@
-// View rays and analytic spheres (shared by GLSL and C++).
+// View rays and analytic spheres (shared by GLSL and C++; angle_between_units is star_psf.glsl's).
 
 // Unit view direction, in the channel frame (+X right, +Y up, -Z forward), through the point
 // `frag` (window pixels, origin at the BOTTOM-left, like gl_FragCoord) of a size.x x size.y
@@ -35,7 +35,7 @@ vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
     return vec4(normalize(n), mu);
 }
 
-// Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist =
+// Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist_m =
 // (d, R, d - R, d + R) computed in double on the CPU (d = camera-centre distance, R = radius):
 // t = (d - R)(d + R) / (d cos(theta) + R mu), the near root of the ray-sphere equation written
 // without cancellation, so a surface a few metres away keeps its precision. 0 for a camera inside.
