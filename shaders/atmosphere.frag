@@ -13,8 +13,8 @@ uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;   // unit, channel frame: camera -> planet centre
 uniform float u_sin_alpha;   // R / d (at most 1), as the body pass had it
-uniform vec4 u_distances;    // (d, R, d - R, d + R) in metres, as the body pass had them
-uniform float u_d;           // camera -> planet centre, metres
+uniform vec4 u_distances_m;  // (d, R, d - R, d + R) in metres, as the body pass had them
+uniform float u_d_m;         // camera -> planet centre, metres
 uniform vec3 u_sun;          // unit, channel frame: planet centre -> Sun
 uniform float u_solar_scale; // scene irradiance of the Sun / illuminance of the physical spectrum
 uniform AtmosphereParams u_atm;
@@ -49,13 +49,13 @@ void main() {
     vec4 scene = texelFetch(u_scene, px, 0);
     vec4 geo = texelFetch(u_geometry, px, 0);
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
-    AtmosphereRayStart st = atm_ray_start(u_atm, u_d, v, u_center_dir, u_sun);
+    AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
     if (!st.valid) {  // the ray misses the atmosphere
         frag_color = scene;
         return;
     }
     float g = geo.a;
-    bool ground = atm_ray_hits_ground(u_atm, st.r, st.mu);
+    bool ground = atm_ray_hits_ground(u_atm, st.r_m, st.mu);
 
     // This planet's surface? The body pass's own hit, recomputed with the same code and
     // uniforms, tells it exactly (comparing g with the atmosphere's ground distance would not:
@@ -65,7 +65,7 @@ void main() {
     bool surface = false;
     float t_hit = -1.0;
     if (hit.w >= 0.0) {
-        t_hit = sphere_hit_distance(v, u_center_dir, hit.w, u_distances);
+        t_hit = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
         surface = g < 0.0 || g >= t_hit * (1.0 - 1e-3);
     }
 
@@ -83,11 +83,11 @@ void main() {
             illuminance = atm_analytic_sun(u_fit, mu_s_g) * max(mu_s_g, 0.0);
         } else {
             illuminance = atm_surface_illuminance(u_atm, u_transmittance, u_trans_size, u_irradiance, u_irr_size,
-                                                  u_atm.bottom_radius, mu_s_g);
+                                                  u_atm.bottom_radius_m, mu_s_g);
         }
         vec3 light = vec3(1.0);
         if (u_ecl.count > 0) {  // direct Sun and sky light alike (the sky over a shadow is shadowed)
-            light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances.y);
+            light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances_m.y);
         }
         if (illustrative) {  // a display colour, applied in RGB to the whole pixel below
             tint = light;
@@ -102,8 +102,8 @@ void main() {
         t_geometry = g;
     }
 
-    // The march's start (the camera moved st.offset along v), relative to the planet centre.
-    EclipseRay shadow = eclipse_ray(u_ecl, u_eclipse_lut_size, v * st.offset - u_center_dir * u_d, v);
+    // The march's start (the camera moved st.offset_m along v), relative to the planet centre.
+    EclipseRay shadow = eclipse_ray(u_ecl, u_eclipse_lut_size, v * st.offset_m - u_center_dir * u_d_m, v);
     if (illustrative) {
         shadow.casters.count = 0;
     }
@@ -111,11 +111,11 @@ void main() {
     if (u_analytic != 0) {
         seg = atm_analytic_view_ray(u_atm, u_fit, st, t_geometry);
         // The fast model lights the whole ray with the sunlight at its middle; so its shadow.
-        seg.inscatter = seg.inscatter *
+        seg.inscatter_per_sr = seg.inscatter_per_sr *
                         eclipse_light_along(shadow, u_eclipse_lut, 0.5 * atm_view_ray_length(u_atm, st, t_geometry));
     } else {
         seg = atm_view_ray_shadowed(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
                                     u_use_ms != 0, st, t_geometry, u_samples, shadow, u_eclipse_lut);
     }
-    frag_color = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter)) * tint, scene.a);
+    frag_color = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint, scene.a);
 }

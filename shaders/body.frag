@@ -9,7 +9,7 @@ uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;       // unit, channel frame
 uniform float u_sin_alpha;       // R / d
-uniform vec4 u_distances;        // (d, R, d - R, d + R) in metres, from the CPU in double
+uniform vec4 u_distances_m;      // (d, R, d - R, d + R) in metres, from the CPU in double
 uniform mat3 u_channel_to_body;
 uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards the sun
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
@@ -37,10 +37,10 @@ void main() {
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     vec3 light = vec3(1.0);
     if (u_ecl.count > 0 && cos_i > 0.0) {
-        light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances.y);
+        light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances_m.y);
     }
     frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
-    float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances);
+    float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
     frag_geometry = vec4(u_reflectance * albedo_map, distance_m);
     gl_FragDepth = log_depth(distance_m);  // only a depth target (the glare probe) keeps it
 }

@@ -13,9 +13,9 @@ uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;     // unit, channel frame
 uniform float u_sin_alpha;     // of the billboard's sphere (the corona's extent)
-uniform vec4 u_distances;      // of the billboard's sphere (unused)
+uniform vec4 u_distances_m;    // of the billboard's sphere (unused)
 uniform float u_disc_sin_alpha;  // R / d of the disc itself
-uniform vec4 u_disc_distances;   // (d, R, d - R, d + R) of the disc in metres, from the CPU in double
+uniform vec4 u_disc_distances_m; // (d, R, d - R, d + R) of the disc in metres, from the CPU in double
 uniform vec3 u_radiance;       // disc-centre radiance times tint
 uniform float u_limb_u;
 uniform float u_corona;        // 0: no corona
@@ -34,10 +34,10 @@ void main() {
     vec4 hit = sphere_hit(v, u_center_dir, u_disc_sin_alpha);
     if (hit.w >= 0.0) {
         frag_color = vec4(u_radiance * limb_darkening(hit.w, u_limb_u), 1.0);
-        frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, hit.w, u_disc_distances));
+        frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, hit.w, u_disc_distances_m));
         return;
     }
-    float theta = 2.0 * asin(clamp(0.5 * length(v - u_center_dir), 0.0, 1.0));
+    float theta = angle_between_units(v, u_center_dir);
     float rho = sin(min(theta, 1.5707963)) / u_disc_sin_alpha;
     if (u_corona <= 0.0 || theta >= 1.5707963 || rho >= CORONA_EXTENT) {
         discard;

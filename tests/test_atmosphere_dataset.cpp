@@ -182,7 +182,7 @@ TEST(ValidationSet, LimbBandRaysGrazeTheRim) {
             const double closest_altitude = r * std::sin(vz * kDeg) - R;
             ASSERT_LT(closest_altitude, top - R);
             ASSERT_GT(closest_altitude, -0.05 * R);
-            (at::ray_hits_ground(r, mu, R) ? hits : misses)++;
+            (at::f64::ray_hits_sphere(r, mu, R) ? hits : misses)++;
         }
         EXPECT_GT(hits, 100) << p.name;
         EXPECT_GT(misses, 100) << p.name;
@@ -300,7 +300,7 @@ TEST_F(EarthReferenceDataset, HoldsEveryValidationCaseInOrder) {
         const double r = p.bottom_radius + std::max(row.c.query.altitude_m, at::kMinCameraAltitude);
         const auto e =
             at::enter_atmosphere(r, std::cos(row.c.query.view_zenith_deg * kDeg), p.bottom_radius, p.top_radius);
-        ASSERT_EQ(row.hits_ground, at::ray_hits_ground(e.r, e.mu, p.bottom_radius)) << "row " << i;
+        ASSERT_EQ(row.hits_ground, at::f64::ray_hits_sphere(e.r_m, e.mu, p.bottom_radius)) << "row " << i;
     }
 }
 

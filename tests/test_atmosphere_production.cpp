@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "atmosphere/atmosphere_geometry.hpp"
 #include "atmosphere/production_accuracy.hpp"
 #include "atmosphere/production_model.hpp"
 #include "support/test_support.hpp"
@@ -33,8 +34,8 @@ sh::AtmosphereParams toy(float scale_height) {
     p.mie_extinction_at_550nm = 0.0;
     p.ozone_column_dobson = 0.0;
     sh::AtmosphereParams a = at::to_shader_params(p);
-    a.rayleigh_scale_height = scale_height;
-    a.mie_scale_height = 1.0f;
+    a.rayleigh_scale_height_m = scale_height;
+    a.mie_scale_height_m = 1.0f;
     return a;
 }
 
@@ -48,11 +49,11 @@ bool finite_nonnegative(const glm::dvec3& v) {
 
 TEST(ProductionToy, VerticalOpticalDepthMatchesClosedForm) {
     const sh::AtmosphereParams a = toy(8000.0f);
-    const double H = 8000.0, htop = a.top_radius - a.bottom_radius;
+    const double H = 8000.0, htop = a.top_radius_m - a.bottom_radius_m;
     for (double h : {0.0, 1000.0, 10000.0, 40000.0}) {
-        const glm::vec3 t = sh::atm_compute_transmittance(a, static_cast<float>(a.bottom_radius + h), 1.0f, 400);
+        const glm::vec3 t = sh::atm_compute_transmittance(a, static_cast<float>(a.bottom_radius_m + h), 1.0f, 400);
         for (int c = 0; c < 3; ++c) {
-            const double tau = a.rayleigh_scattering[c] * H * (std::exp(-h / H) - std::exp(-htop / H));
+            const double tau = a.rayleigh_scattering_per_m[c] * H * (std::exp(-h / H) - std::exp(-htop / H));
             EXPECT_NEAR(-std::log(t[c]), tau, 2e-4 * tau) << h << " channel " << c;
         }
     }
@@ -61,18 +62,18 @@ TEST(ProductionToy, VerticalOpticalDepthMatchesClosedForm) {
 TEST(ProductionToy, HorizontalTransmittanceOfUniformShell) {
     const sh::AtmosphereParams a = toy(1e30f);
     for (double h : {1.0, 2000.0, 30000.0}) {
-        const double r = a.bottom_radius + h;
+        const double r = a.bottom_radius_m + h;
         const glm::vec3 t = sh::atm_compute_transmittance(a, static_cast<float>(r), 0.0f, 40);
-        const double len = std::sqrt(double(a.top_radius) * a.top_radius - r * r);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-a.rayleigh_scattering[c] * len), 2e-5) << h;
+        const double len = std::sqrt(double(a.top_radius_m) * a.top_radius_m - r * r);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-a.rayleigh_scattering_per_m[c] * len), 2e-5) << h;
     }
 }
 
 TEST(ProductionToy, RayGroundDecisionAtHorizonPlusMinusEpsilon) {
     const sh::AtmosphereParams a = toy(8000.0f);
     for (double h : {10.0, 1000.0, 50000.0}) {
-        const double r = a.bottom_radius + h;
-        const double muh = -std::sqrt(1.0 - std::pow(a.bottom_radius / r, 2));
+        const double r = a.bottom_radius_m + h;
+        const double muh = -std::sqrt(1.0 - std::pow(a.bottom_radius_m / r, 2));
         for (double eps : {1e-3, 4e-3}) {
             EXPECT_TRUE(sh::atm_ray_hits_ground(a, float(r), float(muh - eps))) << h << " " << eps;
             EXPECT_FALSE(sh::atm_ray_hits_ground(a, float(r), float(muh + eps))) << h << " " << eps;
@@ -80,13 +81,41 @@ TEST(ProductionToy, RayGroundDecisionAtHorizonPlusMinusEpsilon) {
         // Just below the horizon the ray ends on the ground sphere.
         const float dg = sh::atm_distance_to_ground(a, float(r), float(muh - 1e-3));
         EXPECT_GT(dg, 0.0f);
-        EXPECT_NEAR(sh::atm_radius_at(float(r), float(muh - 1e-3), dg), a.bottom_radius, 2.0) << h;
+        EXPECT_NEAR(sh::atm_radius_at(float(r), float(muh - 1e-3), dg), a.bottom_radius_m, 2.0) << h;
         // At +-1e-6 from the horizon (float): the decision still follows the sign.
         if (h >= 10.0) {
             EXPECT_TRUE(sh::atm_ray_hits_ground(a, float(r), float(muh - 1e-6))) << h;
             EXPECT_FALSE(sh::atm_ray_hits_ground(a, float(r), float(muh + 1e-6))) << h;
         }
     }
+}
+
+// shared/ray_sphere.glsl is one routine in two precisions: the float build (the GPU's and the
+// production model's) follows the double one the reference integrator runs, to float rounding,
+// and makes the same ground decision away from the horizon.
+TEST(ProductionToy, RaySphereFloatFollowsTheDoubleReference) {
+    const double R = 6360000.0, top = 6420000.0;
+    int decisions = 0;
+    for (double h : {1.0, 150.0, 2000.0, 30000.0, 59000.0}) {
+        const double r = R + h;
+        const double muh = at::f64::ray_sphere_horizon_mu(r, R);
+        EXPECT_NEAR(sh::ray_sphere_horizon_mu(float(r), float(R)), muh, 1e-5) << h;
+        for (double mu = -1.0; mu <= 1.0; mu += 0.0625) {
+            const float rf = float(r), mf = float(mu);
+            const double far = at::f64::ray_sphere_far_m(rf, mf, top);
+            EXPECT_NEAR(sh::ray_sphere_far_m(rf, mf, float(top)), far, 2.0 + 1e-6 * far) << h << " " << mu;
+            if (std::abs(mu - muh) < 1e-3) continue;  // float's own decision at the horizon: tested above
+            const bool hits = at::f64::ray_hits_sphere(rf, mf, R);
+            EXPECT_EQ(sh::ray_hits_sphere(rf, mf, float(R)), hits) << h << " " << mu;
+            if (hits) {
+                EXPECT_NEAR(sh::ray_sphere_near_m(rf, mf, float(R)), at::f64::ray_sphere_near_m(rf, mf, R),
+                            2.0 + 1e-6 * at::f64::ray_sphere_near_m(rf, mf, R))
+                    << h << " " << mu;
+                ++decisions;
+            }
+        }
+    }
+    EXPECT_GT(decisions, 20);
 }
 
 TEST(ProductionToy, PhaseFunctionsIntegrateToOne) {
@@ -126,10 +155,10 @@ TEST(ProductionTables, TransmittanceMappingRoundTripsAtTexelCentresAndEdges) {
     // The first and last texel centres are the ends of the parameter ranges.
     const glm::vec2 ground_horizon =
         sh::atm_transmittance_r_mu(a, glm::vec2(1.0f - 0.5f / size.x, 0.5f / size.y), size);
-    EXPECT_NEAR(ground_horizon.x, a.bottom_radius, 1.0);
+    EXPECT_NEAR(ground_horizon.x, a.bottom_radius_m, 1.0);
     EXPECT_NEAR(ground_horizon.y, 0.0, 1e-3);
     const glm::vec2 top_zenith = sh::atm_transmittance_r_mu(a, glm::vec2(0.5f / size.x, 1.0f - 0.5f / size.y), size);
-    EXPECT_NEAR(top_zenith.x, a.top_radius, 1.0);
+    EXPECT_NEAR(top_zenith.x, a.top_radius_m, 1.0);
     EXPECT_NEAR(top_zenith.y, 1.0, 1e-6);
 }
 
@@ -146,7 +175,7 @@ TEST(ProductionTables, MultipleScatteringMappingRoundTrips) {
             EXPECT_NEAR(back.y, uv.y, 1e-4);
         }
     EXPECT_NEAR(sh::atm_ms_r_mu_s(a, glm::vec2(0.5f / 32, 0.5f / 32), size).y, -1.0, 1e-6);
-    EXPECT_NEAR(sh::atm_ms_r_mu_s(a, glm::vec2(1 - 0.5f / 32, 1 - 0.5f / 32), size).x, a.top_radius, 1.0);
+    EXPECT_NEAR(sh::atm_ms_r_mu_s(a, glm::vec2(1 - 0.5f / 32, 1 - 0.5f / 32), size).x, a.top_radius_m, 1.0);
 }
 
 TEST(ProductionTables, SamplerMatchesTexelValuesAtCentresAndInterpolatesBetween) {
@@ -168,7 +197,7 @@ TEST(ProductionTables, TransmittanceTableIs32BitAndMatchesDirectIntegration) {
     const glm::vec2 size(m.tables().transmittance.width, m.tables().transmittance.height);
     for (double h : {0.0, 3000.0, 30000.0})
         for (double mu : {1.0, 0.5, 0.1, 0.02}) {
-            const float r = float(a.bottom_radius + h);
+            const float r = float(a.bottom_radius_m + h);
             const glm::vec3 lut = sh::atm_lookup_transmittance(a, trans, size, r, float(mu));
             const glm::vec3 direct = sh::atm_compute_transmittance(a, r, float(mu), 400);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(lut[c], direct[c], 5e-3 * direct[c] + 1e-6) << h << " " << mu;
@@ -250,7 +279,7 @@ TEST(ProductionHardCases, GeometryAFewMetresAwayWithTheSunAtTheHorizon) {
             const double s = glm::radians(sun_elev);
             const glm::vec3 sun(float(std::cos(s)), 0.0f, float(std::sin(s)));
             const glm::vec3 v = glm::normalize(glm::vec3(0.8f, 0.6f, -0.01f));
-            const auto st = sh::atm_ray_start(a, a.bottom_radius + 1.5f, v, glm::vec3(0, 0, -1), sun);
+            const auto st = sh::atm_ray_start(a, a.bottom_radius_m + 1.5f, v, glm::vec3(0, 0, -1), sun);
             glm::vec3 t;
             const glm::vec3 f = m.radiance(st, dist, &t);
             for (int c = 0; c < 3; ++c) {

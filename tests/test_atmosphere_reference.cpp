@@ -97,28 +97,28 @@ TEST(AtmosphereGeometry, HorizonDecisionAtEpsilon) {
     const double R = 6360000.0, top = 6420000.0;
     for (double alt : {1.0, 10.0, 1000.0, 59999.0, 1.0e6}) {
         const double r = R + alt;
-        const double muh = at::mu_horizon(r, R);
+        const double muh = at::f64::ray_sphere_horizon_mu(r, R);
         EXPECT_NEAR(muh, -std::sqrt(1.0 - (R / r) * (R / r)), 1e-9);
         for (double eps : {1e-6, 1e-4, 4e-3}) {
-            EXPECT_TRUE(at::ray_hits_ground(r, muh - eps, R)) << alt << " " << eps;
-            EXPECT_FALSE(at::ray_hits_ground(r, muh + eps, R)) << alt << " " << eps;
+            EXPECT_TRUE(at::f64::ray_hits_sphere(r, muh - eps, R)) << alt << " " << eps;
+            EXPECT_FALSE(at::f64::ray_hits_sphere(r, muh + eps, R)) << alt << " " << eps;
             // The ground distance puts the end point on the ground sphere.
             const double mu = muh - eps;
-            const double d = at::distance_to_ground(r, mu, R);
+            const double d = at::f64::ray_sphere_near_m(r, mu, R);
             EXPECT_GT(d, 0.0);
             const double r_end = std::sqrt(r * r + d * d + 2.0 * r * mu * d);
             EXPECT_NEAR(r_end, R, 1e-6 * R) << alt << " " << eps;
             if (r <= top) {
-                const double dt = at::distance_to_top(r, muh + eps, top);
+                const double dt = at::f64::ray_sphere_far_m(r, muh + eps, top);
                 EXPECT_GT(dt, 0.0);
                 EXPECT_NEAR(std::sqrt(r * r + dt * dt + 2.0 * r * (muh + eps) * dt), top, 1e-6 * top);
             }
         }
     }
     // At the ground itself every downward ray hits, every upward one does not.
-    EXPECT_TRUE(at::ray_hits_ground(R, -1e-12, R));
-    EXPECT_FALSE(at::ray_hits_ground(R, 1e-12, R));
-    EXPECT_DOUBLE_EQ(at::distance_to_ground(R, -1.0, R), 0.0);
+    EXPECT_TRUE(at::f64::ray_hits_sphere(R, -1e-12, R));
+    EXPECT_FALSE(at::f64::ray_hits_sphere(R, 1e-12, R));
+    EXPECT_DOUBLE_EQ(at::f64::ray_sphere_near_m(R, -1.0, R), 0.0);
 }
 
 TEST(AtmosphereGeometry, CameraOutsideMovesToEntry) {
@@ -127,8 +127,8 @@ TEST(AtmosphereGeometry, CameraOutsideMovesToEntry) {
     // Straight down: entry 1000 km - 60 km below.
     auto e = at::enter_atmosphere(r, -1.0, R, top);
     ASSERT_TRUE(e.intersects);
-    EXPECT_NEAR(e.offset, 1.0e6 - 60000.0, 1e-6);
-    EXPECT_DOUBLE_EQ(e.r, top);
+    EXPECT_NEAR(e.offset_m, 1.0e6 - 60000.0, 1e-6);
+    EXPECT_DOUBLE_EQ(e.r_m, top);
     EXPECT_NEAR(e.mu, -1.0, 1e-12);
     // Looking up or beside the atmosphere: no entry, no NaN.
     EXPECT_FALSE(at::enter_atmosphere(r, 0.5, R, top).intersects);
@@ -142,7 +142,7 @@ TEST(AtmosphereGeometry, CameraOutsideMovesToEntry) {
     EXPECT_NEAR(e.mu, 0.0, 1e-3);
     // Camera inside the ground is raised to the minimum altitude.
     e = at::enter_atmosphere(R - 5.0, 0.3, R, top);
-    EXPECT_DOUBLE_EQ(e.r, R + at::kMinCameraAltitude);
+    EXPECT_DOUBLE_EQ(e.r_m, R + at::kMinCameraAltitude);
 }
 
 // ---------------------------------------------------------------- closed-form toys
@@ -194,9 +194,9 @@ TEST(AtmosphereToy, SlantOpticalDepthConvergesUnderRefinement) {
     const at::ReferenceIntegrator ri(p, single_only()), rf(p, fine);
     for (double h : {1.0, 2000.0, 30000.0}) {
         const double r = p.bottom_radius + h;
-        const double muh = at::mu_horizon(r, p.bottom_radius);
+        const double muh = at::f64::ray_sphere_horizon_mu(r, p.bottom_radius);
         for (double mu : {1.0, 0.3, 0.05, 0.0, muh + 1e-6, muh - 1e-6, -0.5}) {
-            const double len = at::distance_to_nearest_boundary(r, mu, p.bottom_radius, p.top_radius);
+            const double len = at::f64::ray_shell_exit_m(r, mu, p.bottom_radius, p.top_radius);
             const glm::dvec3 a = ri.column_density(r, mu, len), b = rf.column_density(r, mu, len);
             EXPECT_NEAR(a.x, b.x, 1e-8 * b.x + 1e-9) << h << " " << mu;
             EXPECT_NEAR(a.y, b.y, 1e-7 * b.y + 1e-9) << h << " " << mu;
@@ -272,7 +272,7 @@ TEST(AtmosphereSanity, TransmittanceIsMonotonicAndBlueIsDimmer) {
     const auto p = at::AtmosphereParameters::earth();
     const at::ReferenceIntegrator ri(p, single_only());
     const double r = p.bottom_radius + 100.0;
-    const double muh = at::mu_horizon(r, p.bottom_radius);
+    const double muh = at::f64::ray_sphere_horizon_mu(r, p.bottom_radius);
     std::vector<double> prev;
     for (int i = 0; i <= 100; ++i) {
         const double mu = muh + 1e-6 + (1.0 - muh - 1e-6) * std::pow(i / 100.0, 2.0);
@@ -328,7 +328,7 @@ TEST(AtmosphereHardCases, NoNanOrInfAnywhere) {
     const double htop = p.top_radius - p.bottom_radius;
     for (double alt : {0.0, -10.0, 1.0, htop, htop + 1.0, 1.0e6}) {
         const double r = std::max(p.bottom_radius + alt, p.bottom_radius + at::kMinCameraAltitude);
-        const double muh = at::mu_horizon(r, p.bottom_radius);
+        const double muh = at::f64::ray_sphere_horizon_mu(r, p.bottom_radius);
         std::vector<double> zeniths = {0.0, 90.0, 180.0, 120.0};
         for (double eps : {1e-6, -1e-6}) zeniths.push_back(std::acos(muh + eps) * kDeg);
         for (double vz : zeniths)

@@ -137,7 +137,7 @@ struct CpuComposer {
         const vec2 es(t.irradiance.width, t.irradiance.height);
         const AtmosphereRayStart st = atm_ray_start(a, d, v, c_hat, sun);
         if (!st.valid) return glm::dvec3(0.0);
-        const bool ground = atm_ray_hits_ground(a, st.r, st.mu);
+        const bool ground = atm_ray_hits_ground(a, st.r_m, st.mu);
         const vec4 hit = sphere_hit(v, c_hat, sin_alpha);
         glm::dvec3 base(0.0);
         float t_geometry = -1.0f;
@@ -147,20 +147,20 @@ struct CpuComposer {
             const float mu_s_g = clamp(dot(vec3(hit), sun), -1.0f, 1.0f);
             const vec3 e = m.quality().analytic
                                ? atm_analytic_sun(m.analytic_fit(), mu_s_g) * std::max(mu_s_g, 0.0f)
-                               : atm_surface_illuminance(a, trans, ts, irr, es, a.bottom_radius, mu_s_g);
+                               : atm_surface_illuminance(a, trans, ts, irr, es, a.bottom_radius_m, mu_s_g);
             base = kAlbedo * rgb(e) / std::numbers::pi;
             t_geometry = ground ? -1.0f : t_hit;
         }
         AtmosphereSegment seg;
         if (m.quality().analytic) {
-            float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
-            if (t_geometry >= 0.0f) t_end = std::min(t_end, std::max(t_geometry - st.offset, 0.0f));
-            seg = atm_analytic(a, m.analytic_fit(), st.r, st.mu, st.mu_s, st.nu, t_end);
+            float t_end = ground ? atm_distance_to_ground(a, st.r_m, st.mu) : atm_distance_to_top(a, st.r_m, st.mu);
+            if (t_geometry >= 0.0f) t_end = std::min(t_end, std::max(t_geometry - st.offset_m, 0.0f));
+            seg = atm_analytic(a, m.analytic_fit(), st.r_m, st.mu, st.mu_s, st.nu, t_end);
         } else {
             seg = atm_view_ray(a, trans, ts, ms, mss, m.quality().multiple_scattering, st, t_geometry,
                                m.quality().view_samples);
         }
-        return base * glm::dvec3(seg.transmittance) + rgb(seg.inscatter);
+        return base * glm::dvec3(seg.transmittance) + rgb(seg.inscatter_per_sr);
     }
 };
 

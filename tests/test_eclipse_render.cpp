@@ -231,13 +231,13 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
         const sh::AtmosphereRayStart st = sh::atm_ray_start(a, static_cast<float>(glm::length(rel)), v, -v, sun);
         const sh::EclipseCasters c = casting.casters_for(s, scene.find("earth")->id, glm::dmat3(1.0));
         const auto& tb = model.tables();
-        const sh::EclipseRay ray = sh::eclipse_ray(c, glm::vec2(1.0f), glm::vec3(rel) + v * st.offset, v);
+        const sh::EclipseRay ray = sh::eclipse_ray(c, glm::vec2(1.0f), glm::vec3(rel) + v * st.offset_m, v);
         const sh::AtmosphereSegment seg = sh::atm_view_ray_shadowed(
             a, sh::sampler2D{&tb.transmittance}, glm::vec2(tb.transmittance.width, tb.transmittance.height),
             sh::sampler2D{&tb.multiple_scattering},
             glm::vec2(tb.multiple_scattering.width, tb.multiple_scattering.height), model.quality().multiple_scattering,
             st, -1.0f, model.quality().view_samples, ray, sh::sampler2D{&dummy});
-        return model.to_xyz(seg.inscatter).y;
+        return model.to_xyz(seg.inscatter_per_sr).y;
     };
     const double z_off = cpu_zenith(t_tot, ShadowMode::Off), z_90 = cpu_zenith(t_90, ShadowMode::Exact),
                  z_tot = cpu_zenith(t_tot, ShadowMode::Exact);

@@ -105,6 +105,23 @@ TEST(PenumbraReaches, AgreesWithSampledVisibleFraction) {
     EXPECT_FALSE(penumbra_reaches(sun, rs, glm::dvec3(1.496e11, 0, 0), rc, glm::dvec3(1.5e11, 1e9, 0), rr));
 }
 
+// One set of mode numbers: the scene file's names, ShadowMode, the frame flags and the shaders'
+// ECLIPSE_MODE_* agree, and every mode survives the trip through RenderSettings::flags.
+TEST(ShadowCasting, ModeNumbersAreTheShadersOwn) {
+    const std::vector<std::pair<std::string, int>> modes = {{"exact", shading::ECLIPSE_MODE_EXACT},
+                                                            {"fast", shading::ECLIPSE_MODE_FAST},
+                                                            {"lut", shading::ECLIPSE_MODE_LUT},
+                                                            {"illustrative", shading::ECLIPSE_MODE_ILLUSTRATIVE},
+                                                            {"off", shading::ECLIPSE_MODE_OFF}};
+    ASSERT_EQ(shadow_mode_names().size(), modes.size());
+    for (const auto& [name, number] : modes) {
+        const ShadowMode m = shadow_mode_from_name(name);
+        EXPECT_EQ(static_cast<int>(m), number) << name;
+        EXPECT_EQ(shadow_mode_of(with_shadow_mode(0xfff0u, m)), m) << name;
+        EXPECT_EQ(with_shadow_mode(0xfff0u, m) & ~kShadowModeMask, 0xfff0u) << name;
+    }
+}
+
 // On the real sky: the Moon shadows the Earth during the 2006-03-29 eclipse and not a week
 // later; the Earth shadows the Moon in the 2022-11-08 lunar eclipse. The shader input holds the
 // casters relative to the receiver's centre, in double then float.
@@ -130,12 +147,12 @@ TEST(ShadowCasting, SelectsTheMoonOnlyDuringTheEclipse) {
     const shading::EclipseCasters e = casting.casters_for(lunar, moon, glm::dmat3(1.0));
     ASSERT_EQ(e.count, 1);
     EXPECT_EQ(e.mode, static_cast<int>(ShadowMode::Lookup));
-    EXPECT_FLOAT_EQ(e.caster_radius[0], static_cast<float>(s.find("earth")->radius_m));
+    EXPECT_FLOAT_EQ(e.caster_radius_m[0], static_cast<float>(s.find("earth")->radius_m));
     EXPECT_EQ(e.umbra_light[0], glm::vec3(0.1f, 0.01f, 0.001f));
     const glm::dvec3 rel = body_state(*s.find("earth"), lunar.sim_time_s).position_m -
                            body_state(*s.find("moon"), lunar.sim_time_s).position_m;
-    EXPECT_NEAR(glm::length(glm::dvec3(e.caster_position[0]) - rel), 0.0, 1e-6 * glm::length(rel));
-    EXPECT_FLOAT_EQ(e.sun_radius, static_cast<float>(s.find("sun")->radius_m));
+    EXPECT_NEAR(glm::length(glm::dvec3(e.caster_position_m[0]) - rel), 0.0, 1e-6 * glm::length(rel));
+    EXPECT_FLOAT_EQ(e.sun_radius_m, static_cast<float>(s.find("sun")->radius_m));
 }
 
 TEST(ShadowConfig, ErrorsNameTheField) {

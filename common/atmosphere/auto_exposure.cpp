@@ -59,8 +59,9 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         for (const glm::dvec3& v : dirs) {
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
-            const shading::EclipseRay shadow = shading::eclipse_ray(
-                casters, glm::vec2(1.0f), glm::vec3(-to_centre + v * static_cast<double>(start.offset)), glm::vec3(v));
+            const shading::EclipseRay shadow =
+                shading::eclipse_ray(casters, glm::vec2(1.0f),
+                                     glm::vec3(-to_centre + v * static_cast<double>(start.offset_m)), glm::vec3(v));
             const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr, shadow);
             sum += body->model.to_xyz(f).y * scale;
         }

@@ -16,13 +16,13 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
                     static_cast<float>(fn(kProductionWavelengths[2])));
     };
     AtmosphereParams a{};
-    a.bottom_radius = static_cast<float>(p.bottom_radius);
-    a.top_radius = static_cast<float>(p.top_radius);
-    a.rayleigh_scattering = at3([&](double l) { return p.rayleigh_scattering(l); });
-    a.rayleigh_scale_height = static_cast<float>(p.rayleigh_scale_height);
-    a.mie_scattering = at3([&](double l) { return p.mie_scattering(l); });
-    a.mie_extinction = at3([&](double l) { return p.mie_extinction(l); });
-    a.mie_scale_height = static_cast<float>(p.mie_scale_height);
+    a.bottom_radius_m = static_cast<float>(p.bottom_radius);
+    a.top_radius_m = static_cast<float>(p.top_radius);
+    a.rayleigh_scattering_per_m = at3([&](double l) { return p.rayleigh_scattering(l); });
+    a.rayleigh_scale_height_m = static_cast<float>(p.rayleigh_scale_height);
+    a.mie_scattering_per_m = at3([&](double l) { return p.mie_scattering(l); });
+    a.mie_extinction_per_m = at3([&](double l) { return p.mie_extinction(l); });
+    a.mie_scale_height_m = static_cast<float>(p.mie_scale_height);
     a.mie_g = static_cast<float>(p.mie_g);
     // Ozone: band averages rather than point values. The Chappuis band peaks near 600 nm, between
     // the green and red samples, where the eye is most sensitive; point values at 550/680 nm miss
@@ -47,17 +47,17 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
             num += hat * w * p.ozone_absorption(l);
             den += hat * w;
         }
-        a.ozone_absorption = vec3(num / glm::max(den, glm::dvec3(1e-300)));
+        a.ozone_absorption_per_m = vec3(num / glm::max(den, glm::dvec3(1e-300)));
     }
-    a.ozone_bottom = static_cast<float>(p.ozone_bottom);
-    a.ozone_peak = static_cast<float>(p.ozone_peak);
-    a.ozone_top = static_cast<float>(p.ozone_top);
+    a.ozone_bottom_m = static_cast<float>(p.ozone_bottom);
+    a.ozone_peak_m = static_cast<float>(p.ozone_peak);
+    a.ozone_top_m = static_cast<float>(p.ozone_top);
     a.ground_albedo = at3([&](double l) { return p.ground_albedo(l); });
     return a;
 }
 
 AtmosphereAnalyticFit fit_analytic_sun(const AtmosphereParams& a) {
-    const float r = a.bottom_radius + 0.5f * a.rayleigh_scale_height;
+    const float r = a.bottom_radius_m + 0.5f * a.rayleigh_scale_height_m;
     constexpr int kAngles = 111;
     std::vector<glm::vec3> target(kAngles);
     for (int i = 0; i < kAngles; ++i) {
@@ -81,7 +81,7 @@ AtmosphereAnalyticFit fit_analytic_sun(const AtmosphereParams& a) {
                 }
                 if (e < best_c) best_c = e, best_k1 = k1;
             }
-            f.k1[c] = best_k1;
+            f.k1_rad[c] = best_k1;
             total += best_c;
         }
         if (total < best_err) best_err = total, best = f;
@@ -113,29 +113,29 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
     const vec2 ts(tables_.transmittance.width, tables_.transmittance.height);
     const vec2 mss(tables_.multiple_scattering.width, tables_.multiple_scattering.height);
     const vec2 es(tables_.irradiance.width, tables_.irradiance.height);
-    const bool ground = st.valid && atm_ray_hits_ground(a, st.r, st.mu);
+    const bool ground = st.valid && atm_ray_hits_ground(a, st.r_m, st.mu);
     const bool geometry_first = t_geometry >= 0.0f && (!ground || t_geometry < atm_ground_distance(a, st));
     AtmosphereSegment seg;
     if (quality_.analytic) {
         seg = atm_analytic_view_ray(a, fit_, st, t_geometry);
-        seg.inscatter =
-            seg.inscatter * eclipse_light_along(shadow, no_lut, 0.5f * atm_view_ray_length(a, st, t_geometry));
+        seg.inscatter_per_sr =
+            seg.inscatter_per_sr * eclipse_light_along(shadow, no_lut, 0.5f * atm_view_ray_length(a, st, t_geometry));
     } else {
         seg = atm_view_ray_shadowed(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry,
                                     quality_.view_samples, shadow, no_lut);
     }
-    vec3 out = seg.inscatter;
+    vec3 out = seg.inscatter_per_sr;
     if (ground && !geometry_first) {
         vec3 surface;
         if (quality_.analytic) {
-            const float t = atm_distance_to_ground(a, st.r, st.mu);
-            const float mu_s_g = atm_mu_s_at(st.r, st.mu_s, st.nu, t, a.bottom_radius);
+            const float t = atm_distance_to_ground(a, st.r_m, st.mu);
+            const float mu_s_g = atm_mu_s_at(st.r_m, st.mu_s, st.nu, t, a.bottom_radius_m);
             surface = a.ground_albedo * (1.0f / CUPOLA_PI) * atm_analytic_sun(fit_, mu_s_g) * std::max(mu_s_g, 0.0f);
         } else {
             surface = atm_ground_radiance(a, trans, ts, irr, es, st, a.ground_albedo);
         }
-        out = out +
-              seg.transmittance * surface * eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r, st.mu));
+        out = out + seg.transmittance * surface *
+                        eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r_m, st.mu));
     }
     if (transmittance) *transmittance = seg.transmittance;
     return out;
@@ -162,7 +162,7 @@ ProductionRadiance ProductionAtmosphere::sky(const SkyQuery& q) const {
     out.luminance = out.xyz.y;
     out.transmittance = glm::dvec3(t);
     out.in_atmosphere = st.valid;
-    out.hits_ground = st.valid && atm_ray_hits_ground(gpu_, st.r, st.mu);
+    out.hits_ground = st.valid && atm_ray_hits_ground(gpu_, st.r_m, st.mu);
     return out;
 }
 

@@ -231,7 +231,7 @@ std::vector<double> ReferenceIntegrator::optical_depth(double r, double mu, doub
 
 std::vector<double> ReferenceIntegrator::transmittance(double r, double mu) const {
     const double rc = std::clamp(r, params_.bottom_radius, params_.top_radius);
-    auto tau = optical_depth(rc, mu, distance_to_nearest_boundary(rc, mu, params_.bottom_radius, params_.top_radius));
+    auto tau = optical_depth(rc, mu, f64::ray_shell_exit_m(rc, mu, params_.bottom_radius, params_.top_radius));
     for (double& x : tau) x = std::exp(-x);
     return tau;
 }
@@ -241,8 +241,8 @@ void ReferenceIntegrator::sun_transmittance(const glm::dvec3& p, const glm::dvec
     out.assign(beta_r_.size(), 0.0);
     const double r = std::clamp(glm::length(p), params_.bottom_radius, params_.top_radius);
     const double mu_s = glm::dot(p, sun) / std::max(glm::length(p), 1e-300);
-    if (ray_hits_ground(r, mu_s, params_.bottom_radius)) return;
-    const Segment s = make_segment(p, sun, distance_to_top(r, mu_s, params_.top_radius), panel_h, {});
+    if (f64::ray_hits_sphere(r, mu_s, params_.bottom_radius)) return;
+    const Segment s = make_segment(p, sun, f64::ray_sphere_far_m(r, mu_s, params_.top_radius), panel_h, {});
     const glm::dvec3 d = s.cum.back();
     for (std::size_t k = 0; k < out.size(); ++k)
         out[k] = std::exp(-(beta_r_[k] * d.x + beta_me_[k] * d.y + beta_o_[k] * d.z));
@@ -397,10 +397,10 @@ void ReferenceIntegrator::trace_ms_path(MsPath& path, double length, bool hits_g
         // The view ray keeps the ground decision and length sky() made for it (one decision per
         // ray, so rounding near the horizon cannot flip it); later segments decide from their own
         // origin.
-        const bool ground = order == 1 ? hits_ground : ray_hits_ground(r, mu, R);
+        const bool ground = order == 1 ? hits_ground : f64::ray_hits_sphere(r, mu, R);
         const double len = order == 1 ? length
-                           : ground   ? distance_to_ground(r, mu, R)
-                                      : distance_to_top(std::min(r, top), mu, top);
+                           : ground   ? f64::ray_sphere_near_m(r, mu, R)
+                                      : f64::ray_sphere_far_m(std::min(r, top), mu, top);
         const Segment s = make_segment(path.p, path.w, len, settings_.ms_panel_height_m, {});
         const glm::dvec3 dl = s.cum.back();
         for (std::size_t k = 0; k < n; ++k) tau[k] = beta_r_[k] * dl.x + beta_me_[k] * dl.y + beta_o_[k] * dl.z;
@@ -519,9 +519,10 @@ SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {
         out.in_atmosphere = false;
         return out;
     }
-    const glm::dvec3 o = glm::dvec3(0.0, 0.0, r_cam) + e.offset * view;
-    out.hits_ground = ray_hits_ground(e.r, e.mu, R);
-    const double length = out.hits_ground ? distance_to_ground(e.r, e.mu, R) : distance_to_top(e.r, e.mu, top);
+    const glm::dvec3 o = glm::dvec3(0.0, 0.0, r_cam) + e.offset_m * view;
+    out.hits_ground = f64::ray_hits_sphere(e.r_m, e.mu, R);
+    const double length =
+        out.hits_ground ? f64::ray_sphere_near_m(e.r_m, e.mu, R) : f64::ray_sphere_far_m(e.r_m, e.mu, top);
     single_scattering(o, view, length, out.hits_ground, sun, out);
     multiple_scattering(o, view, length, out.hits_ground, sun, out);
     for (std::size_t k = 0; k < n; ++k)

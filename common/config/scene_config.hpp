@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "atmosphere/atmosphere_parameters.hpp"
+#include "shading/shared_types.hpp"
 
 namespace cupola {
 
@@ -50,7 +51,14 @@ struct ShadowGroupConfig {
     bool siblings_shadow_each_other = false;
 };
 
-enum class ShadowMode : uint32_t { Exact = 0, Fast = 1, Lookup = 2, Illustrative = 3, Off = 4 };
+// The numbers are the shaders' ECLIPSE_MODE_* (shaders/shared/eclipse_types.glsl), defined there only.
+enum class ShadowMode : uint32_t {
+    Exact = shading::ECLIPSE_MODE_EXACT,
+    Fast = shading::ECLIPSE_MODE_FAST,
+    Lookup = shading::ECLIPSE_MODE_LUT,
+    Illustrative = shading::ECLIPSE_MODE_ILLUSTRATIVE,
+    Off = shading::ECLIPSE_MODE_OFF
+};
 const std::vector<std::string>& shadow_mode_names();        // "exact", "fast", "lut", "illustrative", "off"
 ShadowMode shadow_mode_from_name(const std::string& name);  // throws std::invalid_argument
 

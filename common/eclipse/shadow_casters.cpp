@@ -84,17 +84,17 @@ shading::EclipseCasters ShadowCasting::casters_for(const Snapshot& snap, uint16_
     const EclipseSun sun = eclipse_sun(scene_, snap);
     const BodyState* receiver_state = find_body(snap, receiver);
     const glm::dvec3 receiver_pos = receiver_state ? receiver_state->position_m : glm::dvec3(0.0);
-    e.mode = static_cast<int>(shadow_mode_of(snap.settings.flags));
+    e.mode = static_cast<int>(shadow_mode_of(snap.settings.flags));  // ShadowMode values are ECLIPSE_MODE_*
     e.limb_u = static_cast<float>(sun.limb_u);
     e.butterworth_order = static_cast<float>(scene_.shadows.butterworth_order);
-    e.sun_position = glm::vec3(to_frame * (sun.position_m - receiver_pos));
-    e.sun_radius = static_cast<float>(sun.radius_m);
+    e.sun_position_m = glm::vec3(to_frame * (sun.position_m - receiver_pos));
+    e.sun_radius_m = static_cast<float>(sun.radius_m);
     for (uint16_t id : ids) {
         for (const auto& st : snap.bodies) {
             if (st.id != id) continue;
             const int i = e.count++;
-            e.caster_position[i] = glm::vec3(to_frame * (st.position_m - receiver_pos));
-            e.caster_radius[i] = static_cast<float>(scene_.bodies[id].radius_m);
+            e.caster_position_m[i] = glm::vec3(to_frame * (st.position_m - receiver_pos));
+            e.caster_radius_m[i] = static_cast<float>(scene_.bodies[id].radius_m);
             const auto light = umbra_light_.find(id);
             e.umbra_light[i] = light != umbra_light_.end() ? light->second : glm::vec3(0.0f);
         }

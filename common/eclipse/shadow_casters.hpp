@@ -60,6 +60,9 @@ private:
 
 // RenderSettings::flags: the shadow mode in bits 0..2 (ShadowMode).
 constexpr uint32_t kShadowModeMask = 0x7u;
+static_assert(static_cast<uint32_t>(ShadowMode::Off) <= kShadowModeMask &&
+                  static_cast<uint32_t>(ShadowMode::Illustrative) <= kShadowModeMask,
+              "every ShadowMode (the shaders' ECLIPSE_MODE_*) must fit in the flags' mode bits");
 inline ShadowMode shadow_mode_of(uint32_t flags) { return static_cast<ShadowMode>(flags & kShadowModeMask); }
 inline uint32_t with_shadow_mode(uint32_t flags, ShadowMode m) {
     return (flags & ~kShadowModeMask) | static_cast<uint32_t>(m);

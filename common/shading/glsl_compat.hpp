@@ -4,11 +4,14 @@
 //
 // Include this, then the .glsl files, inside namespace cupola::shading (and an anonymous
 // namespace: GLSL has no `inline`, so the functions get internal linkage instead). Nothing is
-// #defined. The shared files keep to the subset both languages accept:
+// #defined for C++. The shared files keep to the subset both languages accept:
 //   - no in/out/inout qualifiers, no swizzle assignment, no const arrays, no GLSL-only built-ins
 //     beyond the ones below;
 //   - literals like 1.0 are double in C++: scalar arithmetic is fine (it narrows on assignment or
-//     return), and vector * 1.0 works through the mixed overloads below.
+//     return), and vector * 1.0 works through the mixed overloads below;
+//   - a scalar routine needed in double too is written with the type `real` (float here and on
+//     the GPU, where the file itself #defines it for GLSL only; shared/ray_sphere.glsl), and is
+//     included once more with real = double where double is needed.
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -21,6 +24,7 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
+using real = float;  // the scalar of the files written for both precisions (see above)
 
 // Vector built-ins (glm) and the std scalar overloads glm re-exports.
 using glm::abs;

@@ -4,26 +4,26 @@
 // matrix (production_model.cpp) turns that into photometric linear sRGB with the solar spectrum.
 
 // Density profiles in [0, 1] at altitude h above the ground.
-float atm_rayleigh_density(AtmosphereParams a, float h) {
-    return exp(-max(h, 0.0) / a.rayleigh_scale_height);
+float atm_rayleigh_density(AtmosphereParams a, float h_m) {
+    return exp(-max(h_m, 0.0) / a.rayleigh_scale_height_m);
 }
-float atm_mie_density(AtmosphereParams a, float h) {
-    return exp(-max(h, 0.0) / a.mie_scale_height);
+float atm_mie_density(AtmosphereParams a, float h_m) {
+    return exp(-max(h_m, 0.0) / a.mie_scale_height_m);
 }
-float atm_ozone_density(AtmosphereParams a, float h) {
-    if (h <= a.ozone_bottom || h >= a.ozone_top) return 0.0;
-    if (h < a.ozone_peak) return (h - a.ozone_bottom) / (a.ozone_peak - a.ozone_bottom);
-    return (a.ozone_top - h) / (a.ozone_top - a.ozone_peak);
+float atm_ozone_density(AtmosphereParams a, float h_m) {
+    if (h_m <= a.ozone_bottom_m || h_m >= a.ozone_top_m) return 0.0;
+    if (h_m < a.ozone_peak_m) return (h_m - a.ozone_bottom_m) / (a.ozone_peak_m - a.ozone_bottom_m);
+    return (a.ozone_top_m - h_m) / (a.ozone_top_m - a.ozone_peak_m);
 }
 
 // Extinction coefficient (m^-1) at altitude h.
-vec3 atm_extinction(AtmosphereParams a, float h) {
-    return a.rayleigh_scattering * atm_rayleigh_density(a, h) + a.mie_extinction * atm_mie_density(a, h) +
-           a.ozone_absorption * atm_ozone_density(a, h);
+vec3 atm_extinction(AtmosphereParams a, float h_m) {
+    return a.rayleigh_scattering_per_m * atm_rayleigh_density(a, h_m) + a.mie_extinction_per_m * atm_mie_density(a, h_m) +
+           a.ozone_absorption_per_m * atm_ozone_density(a, h_m);
 }
 // Total scattering coefficient (m^-1) at altitude h (Rayleigh + Mie).
-vec3 atm_scattering(AtmosphereParams a, float h) {
-    return a.rayleigh_scattering * atm_rayleigh_density(a, h) + a.mie_scattering * atm_mie_density(a, h);
+vec3 atm_scattering(AtmosphereParams a, float h_m) {
+    return a.rayleigh_scattering_per_m * atm_rayleigh_density(a, h_m) + a.mie_scattering_per_m * atm_mie_density(a, h_m);
 }
 
 // Phase functions (per steradian), nu = cos(scattering angle).

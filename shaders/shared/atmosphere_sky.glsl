@@ -10,47 +10,47 @@
 // single and multiple scattering alike, i.e. the air around a shadowed sample is taken to be
 // shadowed the same way (the multiple-scattering table knows no shadows).
 AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
-                                     vec2 ms_size, bool use_ms, float r, float mu, float mu_s, float nu,
-                                     float t0, float t1, vec3 throughput, vec3 light) {
+                                     vec2 ms_size, bool use_ms, float r_m, float mu, float mu_s, float nu,
+                                     float t0_m, float t1_m, vec3 throughput, vec3 light) {
     AtmosphereSegment s;
-    float dt = t1 - t0;
-    float t = 0.5 * (t0 + t1);
-    float r_t = atm_radius_at(r, mu, t);
-    float h = r_t - a.bottom_radius;
-    float mu_s_t = atm_mu_s_at(r, mu_s, nu, t, r_t);
+    float dt = t1_m - t0_m;
+    float t = 0.5 * (t0_m + t1_m);
+    float r_t = atm_radius_at(r_m, mu, t);
+    float h = r_t - a.bottom_radius_m;
+    float mu_s_t = atm_mu_s_at(r_m, mu_s, nu, t, r_t);
     float dr = atm_rayleigh_density(a, h);
     float dm = atm_mie_density(a, h);
-    vec3 sigma_t = a.rayleigh_scattering * dr + a.mie_extinction * dm + a.ozone_absorption * atm_ozone_density(a, h);
+    vec3 sigma_t = a.rayleigh_scattering_per_m * dr + a.mie_extinction_per_m * dm + a.ozone_absorption_per_m * atm_ozone_density(a, h);
     vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_t, mu_s_t);
-    vec3 source = t_sun * (a.rayleigh_scattering * (dr * atm_rayleigh_phase(nu)) +
-                           a.mie_scattering * (dm * atm_cornette_shanks_phase(a.mie_g, nu)));
+    vec3 source = t_sun * (a.rayleigh_scattering_per_m * (dr * atm_rayleigh_phase(nu)) +
+                           a.mie_scattering_per_m * (dm * atm_cornette_shanks_phase(a.mie_g, nu)));
     if (use_ms) {
-        source = source + (a.rayleigh_scattering * dr + a.mie_scattering * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
+        source = source + (a.rayleigh_scattering_per_m * dr + a.mie_scattering_per_m * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
     }
-    s.inscatter = throughput * light * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
+    s.inscatter_per_sr = throughput * light * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
     s.transmittance = exp(-sigma_t * dt);
     return s;
 }
 
-// In-scatter and transmittance along the ray from (r, mu) over [0, t_end] in `samples` steps.
+// In-scatter and transmittance along the ray from (r_m, mu) over [0, t_end_m] in `samples` steps.
 // The steps are concentrated (quadratically) toward the ray's closest approach to the planet
 // centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a share
 // of the steps proportional to its length, at least one. `shadow` (its casters may be none)
 // dims the sunlight at each sample; `ecl_lut` is the eclipse table for its lookup-table mode.
 AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                            bool use_ms, float r, float mu, float mu_s, float nu, float t_end, int samples,
+                            bool use_ms, float r_m, float mu, float mu_s, float nu, float t_end_m, int samples,
                             EclipseRay shadow, sampler2D ecl_lut) {
     AtmosphereSegment total;
-    total.inscatter = vec3(0.0);
+    total.inscatter_per_sr = vec3(0.0);
     total.transmittance = vec3(1.0);
-    if (t_end <= 0.0) return total;
-    float t_c = clamp(-r * mu, 0.0, t_end);
+    if (t_end_m <= 0.0) return total;
+    float t_c = clamp(-r_m * mu, 0.0, t_end_m);
     int n_before = 0;
-    if (t_c > 0.0) n_before = int(clamp(floor(float(samples) * t_c / t_end + 0.5), 1.0, float(samples)));
-    if (t_c < t_end && n_before == samples) n_before = samples - 1;
+    if (t_c > 0.0) n_before = int(clamp(floor(float(samples) * t_c / t_end_m + 0.5), 1.0, float(samples)));
+    if (t_c < t_end_m && n_before == samples) n_before = samples - 1;
     int n_after = samples - n_before;
     float t_prev = 0.0;
-    // Before t_c: t(u) = t_c (1 - (1 - u)^2); after: t(u) = t_c + (t_end - t_c) u^2; both dense
+    // Before t_c: t(u) = t_c (1 - (1 - u)^2); after: t(u) = t_c + (t_end_m - t_c) u^2; both dense
     // toward t_c.
     for (int i = 1; i <= samples; ++i) {
         float t_next;
@@ -59,12 +59,12 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
             t_next = t_c * (1.0 - (1.0 - u) * (1.0 - u));
         } else {
             float u = float(i - n_before) / float(n_after);
-            t_next = t_c + (t_end - t_c) * u * u;
+            t_next = t_c + (t_end_m - t_c) * u * u;
         }
         AtmosphereSegment s =
-            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r, mu, mu_s, nu, t_prev, t_next, total.transmittance,
+            atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r_m, mu, mu_s, nu, t_prev, t_next, total.transmittance,
                                eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
-        total.inscatter = total.inscatter + s.inscatter;
+        total.inscatter_per_sr = total.inscatter_per_sr + s.inscatter_per_sr;
         total.transmittance = total.transmittance * s.transmittance;
         t_prev = t_next;
     }
@@ -74,68 +74,68 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
 // Illuminance factor of a horizontal surface at (r, mu_s) per unit solar irradiance: direct Sun
 // through the atmosphere plus sky light. Reflected radiance = albedo / pi * this.
 vec3 atm_surface_illuminance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D irr, vec2 irr_size,
-                             float r, float mu_s) {
-    vec3 direct = atm_sun_transmittance(a, trans, trans_size, r, mu_s) * max(mu_s, 0.0);
-    return direct + atm_lookup_irradiance(a, irr, irr_size, r, mu_s);
+                             float r_m, float mu_s) {
+    vec3 direct = atm_sun_transmittance(a, trans, trans_size, r_m, mu_s) * max(mu_s, 0.0);
+    return direct + atm_lookup_irradiance(a, irr, irr_size, r_m, mu_s);
 }
 
 // Irradiance texel: the sky (single + multiple scattering, no ground bounce) integrated over
 // the upper hemisphere with the cosine weight, `directions` directions, `samples` steps each.
 vec3 atm_compute_irradiance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                            bool use_ms, float r, float mu_s, int directions, int samples) {
+                            bool use_ms, float r_m, float mu_s, int directions, int samples) {
     vec3 e = vec3(0.0);
     float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
     for (int i = 0; i < directions; ++i) {
         vec3 w = atm_sphere_direction(i, 2 * directions);  // the first half has z > 0
         float nu = w.x * sin_s + w.z * mu_s;
-        float len = atm_distance_to_top(a, r, w.z);
-        AtmosphereSegment s = atm_march(a, trans, trans_size, ms, ms_size, use_ms, r, w.z, mu_s, nu, len, samples,
+        float len = atm_distance_to_top(a, r_m, w.z);
+        AtmosphereSegment s = atm_march(a, trans, trans_size, ms, ms_size, use_ms, r_m, w.z, mu_s, nu, len, samples,
                                         eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
-        e = e + s.inscatter * w.z;
+        e = e + s.inscatter_per_sr * w.z;
     }
     return e * (2.0 * CUPOLA_PI / float(directions));
 }
 
 // Length of the atmospheric part of a camera ray (see atm_ray_start), from its start: to the
-// ground, the top of the atmosphere, or scene geometry t_geometry metres from the camera
-// (t_geometry < 0: none); 0 when the ray misses the atmosphere. Every model ends rays here.
-float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geometry) {
+// ground, the top of the atmosphere, or scene geometry t_geometry_m from the camera
+// (t_geometry_m < 0: none); 0 when the ray misses the atmosphere. Every model ends rays here.
+float atm_view_ray_length(AtmosphereParams a, AtmosphereRayStart st, float t_geometry_m) {
     if (!st.valid) return 0.0;
-    bool ground = atm_ray_hits_ground(a, st.r, st.mu);
-    float t_end = ground ? atm_distance_to_ground(a, st.r, st.mu) : atm_distance_to_top(a, st.r, st.mu);
-    if (t_geometry >= 0.0) t_end = min(t_end, max(t_geometry - st.offset, 0.0));
+    bool ground = atm_ray_hits_ground(a, st.r_m, st.mu);
+    float t_end = ground ? atm_distance_to_ground(a, st.r_m, st.mu) : atm_distance_to_top(a, st.r_m, st.mu);
+    if (t_geometry_m >= 0.0) t_end = min(t_end, max(t_geometry_m - st.offset_m, 0.0));
     return t_end;
 }
 
 // A whole view ray from a camera: in-scatter and transmittance over atm_view_ray_length, with
-// the sunlight dimmed by the planet's eclipse shadows; shadow.origin is the ray's start (the
+// the sunlight dimmed by the planet's eclipse shadows; shadow.origin_m is the ray's start (the
 // camera moved st.offset along v), relative to the planet centre, and shadow.dir = v.
 AtmosphereSegment atm_view_ray_shadowed(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
-                                        vec2 ms_size, bool use_ms, AtmosphereRayStart st, float t_geometry,
+                                        vec2 ms_size, bool use_ms, AtmosphereRayStart st, float t_geometry_m,
                                         int samples, EclipseRay shadow, sampler2D ecl_lut) {
-    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r, st.mu, st.mu_s, st.nu,
-                     atm_view_ray_length(a, st, t_geometry), samples, shadow, ecl_lut);
+    return atm_march(a, trans, trans_size, ms, ms_size, use_ms, st.r_m, st.mu, st.mu_s, st.nu,
+                     atm_view_ray_length(a, st, t_geometry_m), samples, shadow, ecl_lut);
 }
 
 // The same without shadows.
 AtmosphereSegment atm_view_ray(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                               bool use_ms, AtmosphereRayStart st, float t_geometry, int samples) {
-    return atm_view_ray_shadowed(a, trans, trans_size, ms, ms_size, use_ms, st, t_geometry, samples,
+                               bool use_ms, AtmosphereRayStart st, float t_geometry_m, int samples) {
+    return atm_view_ray_shadowed(a, trans, trans_size, ms, ms_size, use_ms, st, t_geometry_m, samples,
                                  eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
 }
 
 // Distance from the camera to the ground along the ray, or -1 when it does not meet the ground.
 float atm_ground_distance(AtmosphereParams a, AtmosphereRayStart st) {
-    if (!st.valid || !atm_ray_hits_ground(a, st.r, st.mu)) return -1.0;
-    return st.offset + atm_distance_to_ground(a, st.r, st.mu);
+    if (!st.valid || !atm_ray_hits_ground(a, st.r_m, st.mu)) return -1.0;
+    return st.offset_m + atm_distance_to_ground(a, st.r_m, st.mu);
 }
 
 // Radiance leaving the ground (albedo from the parameters) where the ray meets it, per unit solar
 // irradiance, before the view ray's transmittance.
 vec3 atm_ground_radiance(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D irr, vec2 irr_size,
                          AtmosphereRayStart st, vec3 albedo) {
-    float t = atm_distance_to_ground(a, st.r, st.mu);
-    float mu_s_g = atm_mu_s_at(st.r, st.mu_s, st.nu, t, max(atm_radius_at(st.r, st.mu, t), a.bottom_radius));
+    float t = atm_distance_to_ground(a, st.r_m, st.mu);
+    float mu_s_g = atm_mu_s_at(st.r_m, st.mu_s, st.nu, t, max(atm_radius_at(st.r_m, st.mu, t), a.bottom_radius_m));
     return albedo * (1.0 / CUPOLA_PI) *
-           atm_surface_illuminance(a, trans, trans_size, irr, irr_size, a.bottom_radius, mu_s_g);
+           atm_surface_illuminance(a, trans, trans_size, irr, irr_size, a.bottom_radius_m, mu_s_g);
 }

@@ -7,18 +7,18 @@
 // metres, coefficients in m^-1 at density 1. Filled from AtmosphereParameters on the CPU
 // (common/atmosphere/production_model.cpp), set as a uniform struct on the GPU.
 struct AtmosphereParams {
-    float bottom_radius;
-    float top_radius;
-    vec3 rayleigh_scattering;
-    float rayleigh_scale_height;
-    vec3 mie_scattering;
-    vec3 mie_extinction;
-    float mie_scale_height;
+    float bottom_radius_m;
+    float top_radius_m;
+    vec3 rayleigh_scattering_per_m;
+    float rayleigh_scale_height_m;
+    vec3 mie_scattering_per_m;
+    vec3 mie_extinction_per_m;
+    float mie_scale_height_m;
     float mie_g;
-    vec3 ozone_absorption;  // at the tent peak
-    float ozone_bottom;
-    float ozone_peak;
-    float ozone_top;
+    vec3 ozone_absorption_per_m;  // at the tent peak
+    float ozone_bottom_m;
+    float ozone_peak_m;
+    float ozone_top_m;
     vec3 ground_albedo;
 };
 
@@ -29,28 +29,29 @@ struct AtmosphereParams {
 // away (a float position there steps by 16 km): the entry point is located from the ray's closest approach
 // to the centre, not by subtracting large distances.
 struct AtmosphereRayStart {
-    float r;       // radius of the start (the camera, or the entry into the top sphere)
-    float mu;      // view zenith cosine there
-    float mu_s;    // sun zenith cosine there
-    float nu;      // cos(view, sun)
-    float offset;  // distance from the camera to the start
-    bool valid;    // false: the ray never enters the atmosphere
+    float r_m;       // radius of the start (the camera, or the entry into the top sphere)
+    float mu;        // view zenith cosine there
+    float mu_s;      // sun zenith cosine there
+    float nu;        // cos(view, sun)
+    float offset_m;  // distance from the camera to the start
+    bool valid;      // false: the ray never enters the atmosphere
 };
 
-// Radiance (per unit solar irradiance) scattered once toward a point with an isotropic phase,
-// arriving from direction (mu, nu) [Hillaire's L'], and the transfer factor f_ms along it.
+// Radiance per unit solar irradiance (hence per sr) scattered once toward a point with an
+// isotropic phase, arriving from direction (mu, nu) [Hillaire's L'], and the transfer factor f_ms
+// along it.
 // Returned as (L.xyz, f.x..) packed in two vec3s through a struct.
 struct AtmosphereMsTerms {
-    vec3 second_order;
+    vec3 second_order_per_sr;
     vec3 transfer;
 };
 
 struct AtmosphereSegment {
-    vec3 inscatter;      // per unit solar irradiance
-    vec3 transmittance;  // along the marched part of the ray
+    vec3 inscatter_per_sr;  // radiance per unit solar irradiance
+    vec3 transmittance;     // along the marched part of the ray
 };
 
 struct AtmosphereAnalyticFit {
-    vec3 k1;  // radians
+    vec3 k1_rad;
     float k2;
 };

@@ -9,26 +9,26 @@ EclipseCasters eclipse_no_casters() {
     e.mode = ECLIPSE_MODE_EXACT;
     e.limb_u = 0.0;
     e.butterworth_order = 4.0;
-    e.sun_position = vec3(0.0, 0.0, 1.0);
-    e.sun_radius = 0.0;
+    e.sun_position_m = vec3(0.0, 0.0, 1.0);
+    e.sun_radius_m = 0.0;
     for (int i = 0; i < ECLIPSE_MAX_CASTERS; ++i) {
-        e.caster_position[i] = vec3(0.0);
-        e.caster_radius[i] = 0.0;
+        e.caster_position_m[i] = vec3(0.0);
+        e.caster_radius_m[i] = 0.0;
         e.umbra_light[i] = vec3(0.0);
     }
     return e;
 }
 
-// Light factor (rgb, 1 = full sunlight) at the point p. A caster leaves f of the Sun's light
+// Light factor (rgb, 1 = full sunlight) at the point p_m. A caster leaves f of the Sun's light
 // plus, over the part it hides, its umbra light (sunlight bent into the shadow by the caster's
 // atmosphere: the red Moon of a lunar eclipse). Illustrative mode returns the region tint.
-vec3 eclipse_light(EclipseCasters e, sampler2D lut, vec2 lut_size, vec3 p) {
+vec3 eclipse_light(EclipseCasters e, sampler2D lut, vec2 lut_size, vec3 p_m) {
     vec3 light = vec3(1.0);
     for (int i = 0; i < ECLIPSE_MAX_CASTERS; ++i) {
         if (i >= e.count) {
             break;
         }
-        EclipseDiscs d = eclipse_discs(e.sun_position - p, e.sun_radius, e.caster_position[i] - p, e.caster_radius[i]);
+        EclipseDiscs d = eclipse_discs(e.sun_position_m - p_m, e.sun_radius_m, e.caster_position_m[i] - p_m, e.caster_radius_m[i]);
         if (e.mode == ECLIPSE_MODE_ILLUSTRATIVE) {
             light = light * eclipse_region_tint(eclipse_region(d.ratio, d.separation));
         } else {
@@ -39,19 +39,19 @@ vec3 eclipse_light(EclipseCasters e, sampler2D lut, vec2 lut_size, vec3 p) {
     return light;
 }
 
-EclipseRay eclipse_ray(EclipseCasters casters, vec2 lut_size, vec3 origin, vec3 dir) {
+EclipseRay eclipse_ray(EclipseCasters casters, vec2 lut_size, vec3 origin_m, vec3 dir) {
     EclipseRay r;
     r.casters = casters;
     r.lut_size = lut_size;
-    r.origin = origin;
+    r.origin_m = origin_m;
     r.dir = dir;
     return r;
 }
 
-// Light factor at distance t along the ray (1 when no caster is active).
-vec3 eclipse_light_along(EclipseRay r, sampler2D lut, float t) {
+// Light factor at distance t_m along the ray (1 when no caster is active).
+vec3 eclipse_light_along(EclipseRay r, sampler2D lut, float t_m) {
     if (r.casters.count == 0) {
         return vec3(1.0);
     }
-    return eclipse_light(r.casters, lut, r.lut_size, r.origin + r.dir * t);
+    return eclipse_light(r.casters, lut, r.lut_size, r.origin_m + r.dir * t_m);
 }

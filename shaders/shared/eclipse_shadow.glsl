@@ -5,23 +5,24 @@
 // (antumbra, a point beyond the umbra apex). Every function returns the visible fraction of the
 // Sun's light in [0, 1] and never increases as the discs close (s decreasing).
 
-// The apparent discs of the Sun and one caster seen from a point; to_sun and to_caster run from
-// the point to the centres (any one length unit), radii in the same unit. A caster behind the
-// point or beyond the Sun cannot occlude: s is set past first contact. Angles use asin of
-// ratios and the chord 2 asin(|u1 - u2| / 2), never acos of a dot product (exact for the
-// 0.25-degree discs of the Sun and Moon in float).
-EclipseDiscs eclipse_discs(vec3 to_sun, float sun_radius, vec3 to_caster, float caster_radius) {
+// The apparent discs of the Sun and one caster seen from a point; to_sun_m and to_caster_m run
+// from the point to the centres, radii in the same unit (metres everywhere in Cupola; only ratios
+// enter, so any one length unit gives the same discs). A caster behind the point or beyond the
+// Sun cannot occlude: s is set past first contact. Angles use asin of ratios and the chord
+// (angle_between_units, star_psf.glsl), never acos of a dot product (exact for the 0.25-degree
+// discs of the Sun and Moon in float).
+EclipseDiscs eclipse_discs(vec3 to_sun_m, float sun_radius_m, vec3 to_caster_m, float caster_radius_m) {
     EclipseDiscs d;
-    float ds = length(to_sun);
-    float dc = length(to_caster);
-    d.sun_radius = asin(clamp(sun_radius / ds, 0.0, 1.0));
-    float rc = asin(clamp(caster_radius / max(dc, caster_radius), 0.0, 1.0));
-    d.ratio = rc / d.sun_radius;
-    vec3 us = to_sun / ds;
-    vec3 uc = to_caster / max(dc, 1e-30);
-    float sep = 2.0 * asin(clamp(0.5 * length(us - uc), 0.0, 1.0));
-    d.separation = sep / d.sun_radius;
-    if (dc - caster_radius >= ds || dot(us, uc) <= 0.0) {
+    float ds = length(to_sun_m);
+    float dc = length(to_caster_m);
+    d.sun_radius_rad = asin(clamp(sun_radius_m / ds, 0.0, 1.0));
+    float rc = asin(clamp(caster_radius_m / max(dc, caster_radius_m), 0.0, 1.0));
+    d.ratio = rc / d.sun_radius_rad;
+    vec3 us = to_sun_m / ds;
+    vec3 uc = to_caster_m / max(dc, 1e-30);
+    float sep = angle_between_units(us, uc);
+    d.separation = sep / d.sun_radius_rad;
+    if (dc - caster_radius_m >= ds || dot(us, uc) <= 0.0) {
         d.separation = d.ratio + 2.0;  // cannot occlude
     }
     return d;

@@ -80,19 +80,19 @@ float glare_streaks(GlareParams p, float phi_rad) {
     return (1.0 - c) + c * h * tri * 20.0;  // 20 = 1 / 0.05
 }
 
-// A Gaussian ring of radius theta0 and sigma w on the sphere, per sr, integral 1. The
+// A Gaussian ring of radius theta0_rad and sigma w_rad on the sphere, per sr, integral 1. The
 // normalisation N = integral_0^pi exp(-(theta - theta0)^2 / 2 w^2) 2 pi sin(theta) dtheta is the
 // flat (sin theta ~ theta) integral from 0, exact:
 //   w^2 exp(-theta0^2 / 2 w^2) + sqrt(pi / 2) theta0 w (1 + erf(theta0 / (sqrt(2) w)))
 // times the curvature factor (sin(theta0) / theta0) exp(-w^2 / 2), which is exact for a ring
 // well away from the pole (the Gaussian over the whole line against sin). Good to ~w^2 / 6 at the
 // pole, and to < 1e-3 in between for w <= 0.1 rad (tested to 1 %).
-float glare_ring(float theta_rad, float theta0, float w) {
-    float q = theta0 / w;
-    float planar = w * w * exp(-0.5 * q * q) + 1.25331414 * theta0 * w * (1.0 + erf_approx(0.70710678 * q));
-    float sinc = theta0 > 1e-6 ? sin(theta0) / theta0 : 1.0;
-    float norm = 2.0 * CUPOLA_PI * planar * sinc * exp(-0.5 * w * w);
-    float d = (theta_rad - theta0) / w;
+float glare_ring(float theta_rad, float theta0_rad, float w_rad) {
+    float q = theta0_rad / w_rad;
+    float planar = w_rad * w_rad * exp(-0.5 * q * q) + 1.25331414 * theta0_rad * w_rad * (1.0 + erf_approx(0.70710678 * q));
+    float sinc = theta0_rad > 1e-6 ? sin(theta0_rad) / theta0_rad : 1.0;
+    float norm = 2.0 * CUPOLA_PI * planar * sinc * exp(-0.5 * w_rad * w_rad);
+    float d = (theta_rad - theta0_rad) / w_rad;
     return exp(-0.5 * d * d) / norm;
 }
 

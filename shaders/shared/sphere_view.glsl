@@ -1,4 +1,4 @@
-// View rays and analytic spheres (shared by GLSL and C++).
+// View rays and analytic spheres (shared by GLSL and C++; angle_between_units is star_psf.glsl's).
 
 // Unit view direction, in the channel frame (+X right, +Y up, -Z forward), through the point
 // `frag` (window pixels, origin at the BOTTOM-left, like gl_FragCoord) of a size.x x size.y
@@ -17,7 +17,7 @@ vec3 channel_ray(vec2 frag, vec2 size, vec4 tangents) {
 // (the angle uses the chord, accurate for tiny angles; the CPU supplies c_hat and sin_alpha
 // computed in double).
 vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
-    float theta = 2.0 * asin(clamp(0.5 * length(v - c_hat), 0.0, 1.0));
+    float theta = angle_between_units(v, c_hat);
     if (theta >= 1.5707963) {
         return vec4(0.0, 0.0, 0.0, -1.0);
     }
@@ -35,14 +35,14 @@ vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
     return vec4(normalize(n), mu);
 }
 
-// Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist =
+// Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist_m =
 // (d, R, d - R, d + R) computed in double on the CPU (d = camera-centre distance, R = radius):
 // t = (d - R)(d + R) / (d cos(theta) + R mu), the near root of the ray-sphere equation written
 // without cancellation, so a surface a few metres away keeps its precision. 0 for a camera inside.
-float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist) {
-    if (dist.z <= 0.0) return 0.0;
-    float den = max(dist.x * dot(v, c_hat) + dist.y * mu, 1e-30);
-    return min(dist.z * (dist.w / den), 1e30);
+float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist_m) {
+    if (dist_m.z <= 0.0) return 0.0;
+    float den = max(dist_m.x * dot(v, c_hat) + dist_m.y * mu, 1e-30);
+    return min(dist_m.z * (dist_m.w / den), 1e30);
 }
 
 // Window depth of a camera distance, logarithmic from 1 m to 2^96 m (float keeps relative

@@ -28,18 +28,18 @@ glm::vec2 size_of(const shading::Texture2DData& t) { return glm::vec2(t.width, t
 
 // The AtmosphereParams uniform struct, member by member.
 void set_params(const GlProgram& p, const shading::AtmosphereParams& a) {
-    p.set("u_atm.bottom_radius", a.bottom_radius);
-    p.set("u_atm.top_radius", a.top_radius);
-    p.set("u_atm.rayleigh_scattering", a.rayleigh_scattering);
-    p.set("u_atm.rayleigh_scale_height", a.rayleigh_scale_height);
-    p.set("u_atm.mie_scattering", a.mie_scattering);
-    p.set("u_atm.mie_extinction", a.mie_extinction);
-    p.set("u_atm.mie_scale_height", a.mie_scale_height);
+    p.set("u_atm.bottom_radius_m", a.bottom_radius_m);
+    p.set("u_atm.top_radius_m", a.top_radius_m);
+    p.set("u_atm.rayleigh_scattering_per_m", a.rayleigh_scattering_per_m);
+    p.set("u_atm.rayleigh_scale_height_m", a.rayleigh_scale_height_m);
+    p.set("u_atm.mie_scattering_per_m", a.mie_scattering_per_m);
+    p.set("u_atm.mie_extinction_per_m", a.mie_extinction_per_m);
+    p.set("u_atm.mie_scale_height_m", a.mie_scale_height_m);
     p.set("u_atm.mie_g", a.mie_g);
-    p.set("u_atm.ozone_absorption", a.ozone_absorption);
-    p.set("u_atm.ozone_bottom", a.ozone_bottom);
-    p.set("u_atm.ozone_peak", a.ozone_peak);
-    p.set("u_atm.ozone_top", a.ozone_top);
+    p.set("u_atm.ozone_absorption_per_m", a.ozone_absorption_per_m);
+    p.set("u_atm.ozone_bottom_m", a.ozone_bottom_m);
+    p.set("u_atm.ozone_peak_m", a.ozone_peak_m);
+    p.set("u_atm.ozone_top_m", a.ozone_top_m);
     p.set("u_atm.ground_albedo", a.ground_albedo);
 }
 
@@ -131,12 +131,12 @@ void AtmospherePass::draw(const ChannelView& view, const GpuAtmosphere& atm, con
     program_.set("u_size", view.size());
     program_.set("u_center_dir", glm::vec3(sphere.center_dir));
     program_.set("u_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
-    program_.set("u_distances", sphere_distances(sphere));
-    program_.set("u_d", static_cast<float>(sphere.distance_m));
+    program_.set("u_distances_m", sphere_distances(sphere));
+    program_.set("u_d_m", static_cast<float>(sphere.distance_m));
     program_.set("u_sun", glm::vec3(sun_dir));
     program_.set("u_solar_scale", static_cast<float>(solar_scale));
     set_params(program_, m.shader_params());
-    program_.set("u_fit.k1", m.analytic_fit().k1);
+    program_.set("u_fit.k1_rad", m.analytic_fit().k1_rad);
     program_.set("u_fit.k2", m.analytic_fit().k2);
     program_.set("u_analytic", q.analytic ? 1 : 0);
     program_.set("u_use_ms", q.multiple_scattering ? 1 : 0);

@@ -22,12 +22,12 @@ void EclipseShadowUniforms::apply(const GlProgram& p, const shading::EclipseCast
     p.set("u_ecl.mode", e.mode);
     p.set("u_ecl.limb_u", e.limb_u);
     p.set("u_ecl.butterworth_order", e.butterworth_order);
-    p.set("u_ecl.sun_position", e.sun_position);
-    p.set("u_ecl.sun_radius", e.sun_radius);
+    p.set("u_ecl.sun_position_m", e.sun_position_m);
+    p.set("u_ecl.sun_radius_m", e.sun_radius_m);
     for (int i = 0; i < e.count; ++i) {
         const std::string k = "[" + std::to_string(i) + "]";
-        p.set(("u_ecl.caster_position" + k).c_str(), e.caster_position[i]);
-        p.set(("u_ecl.caster_radius" + k).c_str(), e.caster_radius[i]);
+        p.set(("u_ecl.caster_position_m" + k).c_str(), e.caster_position_m[i]);
+        p.set(("u_ecl.caster_radius_m" + k).c_str(), e.caster_radius_m[i]);
         p.set(("u_ecl.umbra_light" + k).c_str(), e.umbra_light[i]);
     }
     p.set("u_eclipse_lut", static_cast<int>(unit));

@@ -48,7 +48,7 @@ void draw_sphere(const GlProgram& program, const ChannelView& view, const Sphere
     program.set("u_size", view.size());
     program.set("u_center_dir", glm::vec3(sphere.center_dir));
     program.set("u_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
-    program.set("u_distances", sphere_distances(sphere));
+    program.set("u_distances_m", sphere_distances(sphere));
     program.set("u_corners", sphere.corners.data(), 4);
     program.set("u_projection", glm::mat4(view.frustum->projection(SphereView::kNear, SphereView::kFar)));
     program.set("u_fullscreen", sphere.fullscreen ? 1 : 0);

@@ -31,7 +31,7 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
 // camera-to-hit distance without cancellation (sphere_hit_distance in body.frag).
 glm::vec4 sphere_distances(const SphereView& sphere);
 
-// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_distances, u_corners, u_projection,
+// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_distances_m, u_corners, u_projection,
 // u_fullscreen and draws the billboard (a 4-vertex strip from gl_VertexID).
 void draw_sphere(const GlProgram& program, const ChannelView& view, const SphereView& sphere);
 

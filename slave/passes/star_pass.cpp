@@ -52,7 +52,7 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     program_.set("u_world_to_channel", glm::mat3(view.world_to_channel));
     program_.set("u_projection", glm::mat4(wide.projection(0.1, 10.0)));
     program_.set("u_px_per_tangent", glm::vec2(ppt_x, ppt_y));
-    program_.set("u_sigma", static_cast<float>(sigma));
+    program_.set("u_sigma_rad", static_cast<float>(sigma));
     program_.set("u_tangents", view.tangents());
     program_.set("u_size", view.size());
     glEnable(GL_PROGRAM_POINT_SIZE);

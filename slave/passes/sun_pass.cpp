@@ -19,7 +19,7 @@ void SunPass::draw(const ChannelView& view, const BodyConfig& body, const Sphere
     program_.set("u_radiance", glm::vec3(body.tint) * static_cast<float>(body.radiance));
     program_.set("u_limb_u", static_cast<float>(body.limb_darkening_u));
     program_.set("u_disc_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
-    program_.set("u_disc_distances", sphere_distances(sphere));
+    program_.set("u_disc_distances_m", sphere_distances(sphere));
     program_.set("u_corona", static_cast<float>(body.corona));
     // The corona adds to the stars behind it; the geometry attachment is not blended.
     glEnablei(GL_BLEND, 0);
