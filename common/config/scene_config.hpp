@@ -1,5 +1,8 @@
 #pragma once
 // The scene: which bodies exist, their sizes, looks and ephemeris model, and the star field.
+// The file format, each field's default, range and meaning: configs/schema/scene.schema.json
+// (docs/CONFIG.md is written from it). The initialisers below are those defaults, for code that
+// builds a scene without a file; test_config_schema checks they match the schema.
 #include <glm/glm.hpp>
 
 #include <optional>
@@ -41,7 +44,7 @@ struct BodyConfig {
     double corona = 1.0;  // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
 };
 
-// Which bodies shadow which (seed 000, section 3.3.3): in a group the parent shadows its
+// Which bodies shadow which: in a group the parent shadows its
 // children and each child shadows the parent; children shadow each other only if the group
 // says so.
 struct ShadowGroupConfig {
@@ -70,10 +73,10 @@ struct StarFieldConfig {
 // How a channel decides how much of a glare source is visible: from the whole cluster's
 // measurements, shared by the master (seamless), or from its own query only and only while the
 // source's centre is in its own frustum -- the naive behaviour that clips the glare at channel
-// edges (seed 000, section 5.1.1), kept as a switch so tests can show the difference.
+// edges, kept as a switch so tests can show the difference.
 enum class GlareVisibilityMode { Shared, PerChannel };
 
-// Sun glare (seed 000, sections 2.3 and 3.1; Spencer et al. 1995): bloom, lenticular halo and
+// Sun glare (Spencer et al. 1995): bloom, lenticular halo and
 // ciliary-corona streaks on a viewpoint-oriented billboard per bright source, drawn last. Absent
 // from the scene file: no glare.
 struct GlareConfig {
