@@ -255,16 +255,15 @@ double JsonReader::declared_number(const std::string& key) const {
     return number_in(key, lo, hi, declared_default(key).get<double>());
 }
 
+// Integer bounds are exact in a double up to 2^53, far beyond every declared range.
 long long JsonReader::required_integer(const std::string& key) const {
-    const nlohmann::json *lo = find_keyword(key, "minimum"), *hi = find_keyword(key, "maximum");
-    if (!lo || !hi) throw std::logic_error("the schema gives no range for " + field(key));
-    return integer_in(key, lo->get<long long>(), hi->get<long long>());
+    const auto [lo, hi] = declared_range(key);
+    return integer_in(key, static_cast<long long>(lo), static_cast<long long>(hi));
 }
 
 long long JsonReader::declared_integer(const std::string& key, long long fallback) const {
-    const nlohmann::json *lo = find_keyword(key, "minimum"), *hi = find_keyword(key, "maximum");
-    if (!lo || !hi) throw std::logic_error("the schema gives no range for " + field(key));
-    return integer_in(key, lo->get<long long>(), hi->get<long long>(), fallback);
+    const auto [lo, hi] = declared_range(key);
+    return integer_in(key, static_cast<long long>(lo), static_cast<long long>(hi), fallback);
 }
 
 long long JsonReader::declared_integer(const std::string& key) const {
