@@ -155,6 +155,15 @@ TEST(Config, SyntaxErrorNamesFileAndPosition) {
         EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
     }
+    // A number beyond a double is a ConfigError too, not a stray nlohmann exception.
+    test::write_text(dir + "/huge.json", "{\"cluster_id\": 1e777}");
+    try {
+        load_cluster_config(dir + "/huge.json");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("overflow"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Config, HoleInTheDomeIsAnError) {

@@ -36,6 +36,8 @@ nlohmann::json JsonReader::parse_file(const std::string& file) {
         return nlohmann::json::parse(ss.str());
     } catch (const nlohmann::json::parse_error& e) {
         throw ConfigError(file, "", std::string("JSON syntax error: ") + e.what());
+    } catch (const nlohmann::json::exception& e) {  // a number too large for a double, found by fuzz/
+        throw ConfigError(file, "", std::string("JSON error: ") + e.what());
     }
 }
 
