@@ -7,6 +7,7 @@
 #include <erfa.h>
 #include <erfam.h>
 
+#include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
 #include "eclipse/shadow_casters.hpp"
 #include "scene/ephemeris.hpp"
@@ -21,90 +22,119 @@ ShowScript::ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s, 
                      [](const ShowEvent& a, const ShowEvent& b) { return a.at_s < b.at_s; });
 }
 
+namespace {
+
+// Defaults and ranges of every field: configs/schema/show.schema.json (JsonReader::declared_*).
+// What a schema cannot say is checked here: body names of the scene, strictly increasing
+// keyframe times, the UTC time itself, an observer only with an anchor and without offset_m,
+// look_at or look_direction (not both, not zero), and a non-zero up.
+
+std::optional<uint16_t> body_id(const JsonReader& c, const std::string& key, const SceneConfig& scene) {
+    if (!c.has(key)) return std::nullopt;
+    std::string name = c.string(key);
+    if (name.empty()) return std::nullopt;
+    const BodyConfig* b = scene.find(name);
+    if (!b) c.fail(key, "no body named \"" + name + "\" in the scene " + scene.file);
+    return b->id;
+}
+
+std::optional<ShadowMode> optional_shadow_mode(const JsonReader& r) {
+    if (!r.has("shadow_mode")) return std::nullopt;
+    return shadow_mode_from_name(r.one_of("shadow_mode", r.declared_choices("shadow_mode")));
+}
+
+ObserverSite read_observer(const JsonReader& o, const JsonReader& camera) {
+    ObserverSite site;
+    site.lat_deg = o.declared_number("lat_deg");
+    site.lon_deg = o.declared_number("lon_deg");
+    site.alt_m = o.declared_number("alt_m");
+    o.reject_unknown_keys();
+    site.look_azimuth_deg = camera.declared_number("look_azimuth_deg");
+    site.look_elevation_deg = camera.declared_number("look_elevation_deg");
+    return site;
+}
+
+CameraKey read_camera(const JsonReader& c, const SceneConfig& scene) {
+    CameraKey k;
+    k.anchor = body_id(c, "anchor", scene);
+    k.offset_m = c.optional_dvec3("offset_m").value_or(glm::dvec3(0.0));
+    if (auto o = c.optional_child("observer")) {
+        if (!k.anchor) c.fail("observer", "an observer needs an anchor body to stand on");
+        if (c.has("offset_m")) c.fail("offset_m", "give observer or offset_m, not both");
+        k.observer = read_observer(*o, c);
+    }
+    k.look_at = body_id(c, "look_at", scene);
+    if (auto d = c.optional_dvec3("look_direction")) {
+        if (k.look_at) c.fail("look_direction", "give look_at or look_direction, not both");
+        if (glm::length(*d) == 0.0) c.fail("look_direction", "must not be the zero vector");
+        k.look_direction = glm::normalize(*d);
+    } else if (!k.look_at && !k.observer) {
+        c.fail("look_at", "missing: give look_at (a body) or look_direction");
+    }
+    if (auto u = c.optional_dvec3("up")) {
+        if (glm::length(*u) == 0.0) c.fail("up", "must not be the zero vector");
+        k.up = glm::normalize(*u);
+    }
+    k.target_elevation_deg = c.declared_number("target_elevation_deg");
+    c.reject_unknown_keys();
+    return k;
+}
+
+ShowKeyframe read_keyframe(const JsonReader& k, const SceneConfig& scene, const std::vector<ShowKeyframe>& before) {
+    ShowKeyframe f;
+    f.at_s = k.declared_number("at_s");
+    if (!before.empty() && f.at_s <= before.back().at_s)
+        k.fail("at_s", "keyframes must be in strictly increasing at_s");
+    std::string utc = k.declared_string("time_utc");
+    try {
+        f.sim_time_s = utc_iso_to_j2000_seconds(utc);
+    } catch (const std::invalid_argument& e) {
+        k.fail("time_utc", e.what());
+    }
+    f.shadow_mode = optional_shadow_mode(k);
+    f.camera_easing = easing_from_name(k.declared_choice("easing"));
+    f.time_easing = easing_from_name(k.declared_choice("time_easing"));
+    f.camera = read_camera(k.child("camera"), scene);
+    k.reject_unknown_keys();
+    return f;
+}
+
+ShowEvent read_event(const JsonReader& e) {
+    ShowEvent ev;
+    ev.at_s = e.declared_number("at_s");
+    ev.shadow_mode = optional_shadow_mode(e);
+    if (e.has("exposure")) {
+        // A number in the first alternative of the declaration, or "auto".
+        const nlohmann::json& number = e.declaration("exposure").at("oneOf").at(0);
+        if (e.raw().at("exposure").is_string()) {
+            e.one_of("exposure", {"auto"});
+            ev.exposure_auto = true;
+        } else {
+            ev.exposure = static_cast<float>(
+                e.number_in("exposure", number.at("minimum").get<double>(), number.at("maximum").get<double>()));
+        }
+    }
+    if (e.has("star_magnitude_limit"))
+        ev.star_magnitude_limit = static_cast<float>(e.declared_number("star_magnitude_limit", 0.0));
+    e.reject_unknown_keys();
+    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit)
+        e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit");
+    return ev;
+}
+
+}  // namespace
+
 ShowScript ShowScript::load(const std::string& file, const SceneConfig& scene) {
     const nlohmann::json doc = JsonReader::parse_file(file);
-    JsonReader r(doc, file, "");
-    double interval = r.number_in("frame_interval_s", 1e-6, 1e9, 1.0 / 30.0);
+    JsonReader r(doc, file, &config_schema("show"));
+    const double interval = r.declared_number("frame_interval_s");
     std::vector<ShowKeyframe> keys;
-    auto body_id = [&](const JsonReader& c, const std::string& key) -> std::optional<uint16_t> {
-        if (!c.has(key)) return std::nullopt;
-        std::string name = c.string(key);
-        if (name.empty()) return std::nullopt;
-        const BodyConfig* b = scene.find(name);
-        if (!b) c.fail(key, "no body named \"" + name + "\" in the scene " + scene.file);
-        return b->id;
-    };
     auto list = r.array("keyframes");
     if (list.empty()) r.fail("keyframes", "at least one keyframe is required");
-    for (auto& k : list) {
-        ShowKeyframe f;
-        f.at_s = k.number_in("at_s", 0.0, 1e12);
-        if (!keys.empty() && f.at_s <= keys.back().at_s)
-            k.fail("at_s", "keyframes must be in strictly increasing at_s");
-        std::string utc = k.string("time_utc");
-        try {
-            f.sim_time_s = utc_iso_to_j2000_seconds(utc);
-        } catch (const std::invalid_argument& e) {
-            k.fail("time_utc", e.what());
-        }
-        if (k.has("shadow_mode")) f.shadow_mode = shadow_mode_from_name(k.one_of("shadow_mode", shadow_mode_names()));
-        f.camera_easing = easing_from_name(k.one_of("easing", easing_names(), "ease_in_out"));
-        f.time_easing = easing_from_name(k.one_of("time_easing", easing_names(), "linear"));
-        auto c = k.child("camera");
-        f.camera.anchor = body_id(c, "anchor");
-        f.camera.offset_m = c.optional_dvec3("offset_m").value_or(glm::dvec3(0.0));
-        if (auto o = c.optional_child("observer")) {
-            if (!f.camera.anchor) c.fail("observer", "an observer needs an anchor body to stand on");
-            if (c.has("offset_m")) c.fail("offset_m", "give observer or offset_m, not both");
-            ObserverSite site;
-            site.lat_deg = o->number_in("lat_deg", -90.0, 90.0);
-            site.lon_deg = o->number_in("lon_deg", -360.0, 360.0);
-            site.alt_m = o->number_in("alt_m", 0.0, 1.0e8, 0.0);
-            o->reject_unknown_keys();
-            site.look_azimuth_deg = c.number_in("look_azimuth_deg", -360.0, 360.0, site.look_azimuth_deg);
-            site.look_elevation_deg = c.number_in("look_elevation_deg", -90.0, 90.0, site.look_elevation_deg);
-            f.camera.observer = site;
-        }
-        f.camera.look_at = body_id(c, "look_at");
-        if (auto d = c.optional_dvec3("look_direction")) {
-            if (f.camera.look_at) c.fail("look_direction", "give look_at or look_direction, not both");
-            if (glm::length(*d) == 0.0) c.fail("look_direction", "must not be the zero vector");
-            f.camera.look_direction = glm::normalize(*d);
-        } else if (!f.camera.look_at && !f.camera.observer) {
-            c.fail("look_at", "missing: give look_at (a body) or look_direction");
-        }
-        if (auto u = c.optional_dvec3("up")) {
-            if (glm::length(*u) == 0.0) c.fail("up", "must not be the zero vector");
-            f.camera.up = glm::normalize(*u);
-        }
-        f.camera.target_elevation_deg = c.number_in("target_elevation_deg", -90.0, 90.0, 0.0);
-        c.reject_unknown_keys();
-        k.reject_unknown_keys();
-        keys.push_back(f);
-    }
+    for (auto& k : list) keys.push_back(read_keyframe(k, scene, keys));
     std::vector<ShowEvent> events;
-    if (r.has("events")) {
-        for (auto& e : r.array("events")) {
-            ShowEvent ev;
-            ev.at_s = e.number_in("at_s", 0.0, 1e12);
-            if (e.has("shadow_mode"))
-                ev.shadow_mode = shadow_mode_from_name(e.one_of("shadow_mode", shadow_mode_names()));
-            if (e.has("exposure")) {
-                if (e.raw().at("exposure").is_string()) {
-                    e.one_of("exposure", {"auto"});
-                    ev.exposure_auto = true;
-                } else {
-                    ev.exposure = static_cast<float>(e.number_in("exposure", 1e-6, 1e6));
-                }
-            }
-            if (e.has("star_magnitude_limit"))
-                ev.star_magnitude_limit = static_cast<float>(e.number_in("star_magnitude_limit", -30.0, 30.0));
-            e.reject_unknown_keys();
-            if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit)
-                e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit");
-            events.push_back(ev);
-        }
-    }
+    if (r.has("events"))
+        for (auto& e : r.array("events")) events.push_back(read_event(e));
     r.reject_unknown_keys();
     ShowScript show(std::move(keys), interval, std::move(events));
     show.file_ = file;

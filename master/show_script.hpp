@@ -2,30 +2,11 @@
 // A show: keyframes of simulation time and camera, interpolated per frame. Read from a JSON show
 // file; every mistake throws ConfigError naming the file and the field.
 //
-// {
-//   "frame_interval_s": 0.0333,            // show seconds per frame when frame_rate_hz is 0
-//   "keyframes": [
-//     { "at_s": 0,                          // show time of this keyframe (strictly increasing)
-//       "time_utc": "2024-04-08T18:00:00Z", // simulation time here
-//       "camera": { "anchor": "earth",      // body the camera rides with ("" or absent: world origin)
-//                   "offset_m": [x, y, z],  // from the anchor, world (equatorial) axes, metres
-//                   "look_at": "moon",      // or "look_direction": [x, y, z]
-//                   "up": [0, 0, 1],        // world up hint (default: celestial north)
-//                   "target_elevation_deg": 40 },  // raise the target above the dome's front horizon
-//     "shadow_mode": "exact",               // optional: exact|fast|lut|illustrative|off from here on
-//     "easing": "ease_in_out",              // camera, this key -> the next (default ease_in_out)
-//     "time_easing": "linear" }             // simulation time, this key -> the next (default linear)
-//   ],                                      // easings: linear|ease_in|ease_out|ease_in_out|hold
-//   "events": [                             // optional: render settings switched at a show time
-//     { "at_s": 12.5, "shadow_mode": "illustrative", "exposure": 2.0, "star_magnitude_limit": 5.5 },
-//     { "at_s": 20, "exposure": "auto" }    // back to the cluster's exposure (auto or fixed)
-//   ]
-// }
-// A ground observer instead of offset_m: "observer": { "lat_deg": 23.15, "lon_deg": 16.73,
-// "alt_m": 2 } on the anchor body (geodetic WGS84 latitude on the Earth, rotating with it),
-// looking along "look_azimuth_deg" (from north through east, default 180) and
-// "look_elevation_deg" (default 0), or at "look_at"; the camera's up (the dome's apex) is the
-// local zenith.
+// The file format, each field's default, range and meaning: configs/schema/show.schema.json
+// (docs/CONFIG.md is written from it; configs/shows/ has examples). In short: keyframes[] of
+// at_s, time_utc and a camera (anchor body, offset_m or a ground observer, look_at or
+// look_direction), with easings to the next key; events[] switch shadow mode, exposure and star
+// magnitude limit at a show time.
 #include <optional>
 #include <string>
 #include <vector>

@@ -7,6 +7,8 @@
 #include "config/cluster_config.hpp"
 #include "config/config_error.hpp"
 #include "config/scene_config.hpp"
+#include "input/device_table.hpp"
+#include "show_script.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -41,19 +43,32 @@ void expect_error(const std::string& name, const json& cfg, const std::string& f
 
 }  // namespace
 
+// Every cluster config under configs/, with its scene and show, and every device table.
 TEST(Config, ShippedConfigsLoad) {
-    for (const char* f :
-         {"configs/dome-4ch.json", "configs/wall-3ch.json", "configs/loopback-1ch.json", "configs/descent-1ch.json"}) {
-        ClusterConfig c = load_cluster_config(test::source_path(f));
+    size_t loaded = 0;
+    for (const auto& e : std::filesystem::directory_iterator(test::source_path("configs"))) {
+        if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+        const std::string f = e.path().string();
+        ClusterConfig c = load_cluster_config(f);
         EXPECT_FALSE(c.channels.empty()) << f;
         SceneConfig s = load_scene_config(c.scene_file);
-        EXPECT_EQ(s.bodies.size(), 3u);
+        EXPECT_EQ(s.bodies.size(), 3u) << f;
+        const ShowScript show = ShowScript::load(c.show_file, s);
+        EXPECT_FALSE(show.keyframes().empty()) << f;
+        ++loaded;
     }
+    EXPECT_GE(loaded, 5u);
+    for (const auto& e : std::filesystem::directory_iterator(test::source_path("configs/input")))
+        EXPECT_FALSE(load_device_table(e.path().string()).empty()) << e.path();
     ClusterConfig dome = load_cluster_config(test::source_path("configs/dome-4ch.json"));
     EXPECT_EQ(dome.channels.size(), 4u);
     EXPECT_EQ(dome.network.transport, Transport::Multicast);
     EXPECT_FALSE(find_coverage_hole(dome.dome, dome.channels).has_value());
     EXPECT_EQ(load_cluster_config(test::source_path("configs/wall-3ch.json")).channels.size(), 3u);
+    ClusterConfig eclipse = load_cluster_config(test::source_path("configs/eclipse-2006-dome.json"));
+    EXPECT_EQ(eclipse.channels.size(), 4u);
+    EXPECT_EQ(eclipse.network.transport, Transport::Unicast);
+    EXPECT_TRUE(eclipse.output.auto_exposure.enabled);
 }
 
 TEST(Config, UnknownKeyIsNamed) {
@@ -139,6 +154,15 @@ TEST(Config, SyntaxErrorNamesFileAndPosition) {
     } catch (const ConfigError& e) {
         EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+    }
+    // A number beyond a double is a ConfigError too, not a stray nlohmann exception.
+    test::write_text(dir + "/huge.json", "{\"cluster_id\": 1e777}");
+    try {
+        load_cluster_config(dir + "/huge.json");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("overflow"), std::string::npos) << e.what();
     }
 }
 

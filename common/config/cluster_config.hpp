@@ -1,6 +1,9 @@
 #pragma once
 // The cluster configuration: network, dome, output and the channels (one slave process each).
 // Loaded from JSON by load_cluster_config(); every mistake throws ConfigError naming file and field.
+// The file format, each field's default, range and meaning: configs/schema/cluster.schema.json
+// (docs/CONFIG.md is written from it). The initialisers below are those defaults, for code that
+// builds a config without a file; test_config_schema checks they match the schema.
 #include <cstdint>
 #include <map>
 #include <string>

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "config/cluster_config.hpp"
+#include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
 #include "atmosphere/production_quality.hpp"
 
@@ -31,88 +32,147 @@ ShadowMode shadow_mode_from_name(const std::string& name) {
 }
 
 namespace {
-ShadowConfig read_shadows(const JsonReader& r, const SceneConfig& s) {
-    ShadowConfig c;
-    c.mode = shadow_mode_from_name(r.one_of("mode", shadow_mode_names(), "exact"));
-    c.butterworth_order = r.number_in("butterworth_order", 0.5, 64.0, c.butterworth_order);
-    auto id_of = [&](const JsonReader& g, const std::string& key, const std::string& name) {
+
+// Defaults and ranges of every field: configs/schema/scene.schema.json (JsonReader::declared_*).
+// What a schema cannot say is checked here: unique body names, textures and the catalogue that
+// must exist, shadow groups naming bodies of the scene that are not stars, a star without an
+// atmosphere, and an atmosphere thicker than its scale heights.
+
+ShadowGroupConfig read_shadow_group(const JsonReader& g, const SceneConfig& s) {
+    auto id_of = [&](const std::string& key, const std::string& name) {
         const BodyConfig* b = s.find(name);
         if (!b) g.fail(key, "no body named \"" + name + "\" in the scene");
         if (b->kind == BodyKind::Star) g.fail(key, "\"" + name + "\" is a star: stars are light sources, not casters");
         return b->id;
     };
-    if (r.has("groups")) {
-        for (auto& g : r.array("groups")) {
-            ShadowGroupConfig group;
-            group.parent = id_of(g, "parent", g.string("parent"));
-            const auto children = g.strings("children", {});
-            if (children.empty()) g.fail("children", "a shadow group needs at least one child");
-            for (const auto& name : children) {
-                const uint16_t id = id_of(g, "children", name);
-                if (id == group.parent) g.fail("children", "\"" + name + "\" is the group's parent");
-                group.children.push_back(id);
-            }
-            group.siblings_shadow_each_other = g.boolean("siblings_shadow_each_other", false);
-            g.reject_unknown_keys();
-            c.groups.push_back(group);
-        }
+    ShadowGroupConfig group;
+    group.parent = id_of("parent", g.string("parent"));
+    const auto children = g.strings("children", {});
+    if (children.empty()) g.fail("children", "a shadow group needs at least one child");
+    for (const auto& name : children) {
+        const uint16_t id = id_of("children", name);
+        if (id == group.parent) g.fail("children", "\"" + name + "\" is the group's parent");
+        group.children.push_back(id);
     }
+    group.siblings_shadow_each_other = g.declared_boolean("siblings_shadow_each_other");
+    g.reject_unknown_keys();
+    return group;
+}
+
+ShadowConfig read_shadows(const JsonReader& r, const SceneConfig& s) {
+    ShadowConfig c;
+    c.mode = shadow_mode_from_name(r.declared_choice("mode"));
+    c.butterworth_order = r.declared_number("butterworth_order");
+    if (r.has("groups"))
+        for (auto& g : r.array("groups")) c.groups.push_back(read_shadow_group(g, s));
     r.reject_unknown_keys();
     return c;
 }
 
 GlareConfig read_glare(const JsonReader& g) {
     GlareConfig c;
-    c.enabled = g.boolean("enabled", true);
-    c.strength = g.number_in("strength", 0.0, 1e6, c.strength);
-    c.extent_deg = g.number_in("extent_deg", 1.0, 85.0, c.extent_deg);
-    c.halo_radius_deg = g.number_in("halo_radius_deg", 0.1, 30.0, c.halo_radius_deg);
-    c.halo_width_deg = g.number_in("halo_width_deg", 0.01, 10.0, c.halo_width_deg);
-    c.halo_fraction = g.number_in("halo_fraction", 0.0, 1.0, c.halo_fraction);
-    c.streak_count = static_cast<int>(g.integer_in("streak_count", 2, 1024, c.streak_count));
+    c.enabled = g.declared_boolean("enabled");
+    c.strength = g.declared_number("strength");
+    c.extent_deg = g.declared_number("extent_deg");
+    c.halo_radius_deg = g.declared_number("halo_radius_deg");
+    c.halo_width_deg = g.declared_number("halo_width_deg");
+    c.halo_fraction = g.declared_number("halo_fraction");
+    c.streak_count = static_cast<int>(g.declared_integer("streak_count"));
     if (c.streak_count % 2 != 0)
         g.fail("streak_count", "must be even (rays twinkle in pairs so the energy stays constant)");
-    c.streak_contrast = g.number_in("streak_contrast", 0.0, 1.0, c.streak_contrast);
-    c.animation_rate = g.number_in("animation_rate", 0.0, 100.0, c.animation_rate);
-    c.visibility = g.one_of("visibility", {"shared", "per_channel"}, "shared") == "shared"
-                       ? GlareVisibilityMode::Shared
-                       : GlareVisibilityMode::PerChannel;
-    c.min_display = g.number_in("min_display", 0.0, 1e6, c.min_display);
-    c.max_sources = static_cast<int>(g.integer_in("max_sources", 1, 64, c.max_sources));
-    c.probe_size = static_cast<int>(g.integer_in("probe_size", 8, 512, c.probe_size));
+    c.streak_contrast = g.declared_number("streak_contrast");
+    c.animation_rate = g.declared_number("animation_rate");
+    c.visibility =
+        g.declared_choice("visibility") == "shared" ? GlareVisibilityMode::Shared : GlareVisibilityMode::PerChannel;
+    c.min_display = g.declared_number("min_display");
+    c.max_sources = static_cast<int>(g.declared_integer("max_sources"));
+    c.probe_size = static_cast<int>(g.declared_integer("probe_size"));
     g.reject_unknown_keys();
     return c;
 }
 
+// The overrides default to the preset's values.
 AtmosphereConfig read_atmosphere(const JsonReader& a, const BodyConfig& body) {
     AtmosphereConfig c;
     c.present = true;
-    c.preset = a.one_of("preset", {"earth", "mars"});
+    c.preset = a.declared_choice("preset");
     c.parameters =
         c.preset == "earth" ? atmosphere::AtmosphereParameters::earth() : atmosphere::AtmosphereParameters::mars();
-    c.model = a.one_of("model", atmosphere::production_quality_names(), c.model);
+    c.model = a.declared_choice("model");
     atmosphere::AtmosphereParameters& p = c.parameters;
     // The ground is the body's surface; the shell keeps the preset's thickness unless overridden.
-    const double thickness = a.number_in("top_altitude_m", 1000.0, 1.0e6, p.top_radius - p.bottom_radius);
+    const double thickness = a.declared_number("top_altitude_m", p.top_radius - p.bottom_radius);
     p.name = body.name;
     p.bottom_radius = body.radius_m;
     p.top_radius = body.radius_m + thickness;
-    p.rayleigh_scale_height = a.number_in("rayleigh_scale_height_m", 10.0, 1.0e5, p.rayleigh_scale_height);
-    p.mie_extinction_at_550nm = a.number_in("mie_extinction_at_550nm", 0.0, 1.0e-2, p.mie_extinction_at_550nm);
-    p.mie_scale_height = a.number_in("mie_scale_height_m", 10.0, 1.0e5, p.mie_scale_height);
-    p.mie_g = a.number_in("mie_g", -0.99, 0.99, p.mie_g);
+    p.rayleigh_scale_height = a.declared_number("rayleigh_scale_height_m", p.rayleigh_scale_height);
+    p.mie_extinction_at_550nm = a.declared_number("mie_extinction_at_550nm", p.mie_extinction_at_550nm);
+    p.mie_scale_height = a.declared_number("mie_scale_height_m", p.mie_scale_height);
+    p.mie_g = a.declared_number("mie_g", p.mie_g);
     if (a.has("mie_single_scattering_albedo"))
         p.mie_single_scattering_albedo =
-            atmosphere::SpectralCurve::constant(a.number_in("mie_single_scattering_albedo", 0.0, 1.0));
-    p.ozone_column_dobson = a.number_in("ozone_column_dobson", 0.0, 2000.0, p.ozone_column_dobson);
+            atmosphere::SpectralCurve::constant(a.declared_number("mie_single_scattering_albedo", 0.0));
+    p.ozone_column_dobson = a.declared_number("ozone_column_dobson", p.ozone_column_dobson);
     if (a.has("ground_albedo"))
-        p.ground_albedo = atmosphere::SpectralCurve::constant(a.number_in("ground_albedo", 0.0, 1.0));
+        p.ground_albedo = atmosphere::SpectralCurve::constant(a.declared_number("ground_albedo", 0.0));
     if (p.mie_scale_height >= thickness || p.rayleigh_scale_height >= thickness)
         a.fail("top_altitude_m",
                "the atmosphere (" + std::to_string(thickness) + " m) must be thicker than its scale heights");
     a.reject_unknown_keys();
     return c;
 }
+
+std::string read_texture(const JsonReader& b, const std::string& dir, const std::string& name) {
+    std::string tex = b.string("texture", "generated:" + name);
+    if (tex.rfind("generated:", 0) == 0) return tex;
+    const std::string path = resolve_path(dir, tex);
+    if (!fs::is_regular_file(path))
+        b.fail("texture", "image \"" + path +
+                              "\" does not exist (install it with scripts/setup.sh, or use \"generated:" + name +
+                              "\")");
+    return path;
+}
+
+BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, std::set<std::string>& names) {
+    BodyConfig c;
+    c.id = id;
+    c.name = b.declared_string("name");
+    if (!names.insert(c.name).second) b.fail("name", "body name \"" + c.name + "\" is used twice");
+    const std::string kind = b.declared_choice("kind");
+    c.kind = kind == "star" ? BodyKind::Star : kind == "planet" ? BodyKind::Planet : BodyKind::Moon;
+    c.ephemeris = b.declared_choice("ephemeris");
+    c.radius_m = b.declared_number("radius_m");
+    c.texture = read_texture(b, dir, c.name);
+    if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
+    c.albedo = b.declared_number("albedo");
+    c.limb_darkening_u = b.declared_number("limb_darkening_u");
+    c.radiance = b.declared_number("radiance");
+    if (auto u = b.optional_dvec3("umbra_light")) {
+        if (glm::any(glm::lessThan(*u, glm::dvec3(0.0))) || glm::any(glm::greaterThan(*u, glm::dvec3(1.0))))
+            b.fail("umbra_light", "each component must lie in [0, 1] (light left in the umbra per unit sunlight)");
+        c.umbra_light = glm::vec3(*u);
+    }
+    c.umbra_brightness = b.declared_number("umbra_brightness");
+    c.corona = b.declared_number("corona");
+    if (auto a = b.optional_child("atmosphere")) {
+        if (c.kind == BodyKind::Star) a->fail("preset", "a star cannot have an atmosphere");
+        c.atmosphere = read_atmosphere(*a, c);
+    }
+    b.reject_unknown_keys();
+    return c;
+}
+
+StarFieldConfig read_stars(const JsonReader& st, const std::string& dir) {
+    StarFieldConfig c;
+    c.catalog = resolve_path(dir, st.string("catalog"));
+    if (!fs::is_regular_file(c.catalog)) st.fail("catalog", "file \"" + c.catalog + "\" does not exist");
+    c.magnitude_limit = st.declared_number("magnitude_limit");
+    c.psf_sigma_arcmin = st.declared_number("psf_sigma_arcmin");
+    c.zero_mag_flux = st.declared_number("zero_mag_flux");
+    st.reject_unknown_keys();
+    return c;
+}
+
 }  // namespace
 
 SceneConfig load_scene_config(const std::string& file) {
@@ -120,59 +180,15 @@ SceneConfig load_scene_config(const std::string& file) {
     s.file = file;
     const std::string dir = fs::absolute(file).parent_path().string();
     const nlohmann::json doc = JsonReader::parse_file(file);
-    JsonReader r(doc, file, "");
+    JsonReader r(doc, file, &config_schema("scene"));
 
     auto bodies = r.array("bodies");
     if (bodies.empty()) r.fail("bodies", "at least one body is required");
     if (bodies.size() > 1000) r.fail("bodies", "at most 1000 bodies");
     std::set<std::string> names;
-    for (auto& b : bodies) {
-        BodyConfig c;
-        c.id = static_cast<uint16_t>(s.bodies.size());
-        c.name = b.string("name");
-        if (!names.insert(c.name).second) b.fail("name", "body name \"" + c.name + "\" is used twice");
-        std::string kind = b.one_of("kind", {"star", "planet", "moon"});
-        c.kind = kind == "star" ? BodyKind::Star : kind == "planet" ? BodyKind::Planet : BodyKind::Moon;
-        c.ephemeris = b.one_of("ephemeris", {"sun", "earth", "moon", "mercury", "venus", "mars", "jupiter", "saturn",
-                                             "uranus", "neptune"});
-        c.radius_m = b.number_in("radius_m", 1.0, 1e12);
-        std::string tex = b.string("texture", "generated:" + c.name);
-        if (tex.rfind("generated:", 0) == 0) {
-            c.texture = tex;
-        } else {
-            c.texture = resolve_path(dir, tex);
-            if (!fs::is_regular_file(c.texture))
-                b.fail("texture",
-                       "image \"" + c.texture +
-                           "\" does not exist (install it with scripts/setup.sh, or use \"generated:" + c.name + "\")");
-        }
-        if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
-        c.albedo = b.number_in("albedo", 0.0, 1.0, c.albedo);
-        c.limb_darkening_u = b.number_in("limb_darkening_u", 0.0, 1.0, c.limb_darkening_u);
-        c.radiance = b.number_in("radiance", 0.0, 1.0e12, c.radiance);
-        if (auto u = b.optional_dvec3("umbra_light")) {
-            if (glm::any(glm::lessThan(*u, glm::dvec3(0.0))) || glm::any(glm::greaterThan(*u, glm::dvec3(1.0))))
-                b.fail("umbra_light", "each component must lie in [0, 1] (light left in the umbra per unit sunlight)");
-            c.umbra_light = glm::vec3(*u);
-        }
-        c.umbra_brightness = b.number_in("umbra_brightness", 0.0, 1.0, c.umbra_brightness);
-        c.corona = b.number_in("corona", 0.0, 1.0e6, c.corona);
-        if (auto a = b.optional_child("atmosphere")) {
-            if (c.kind == BodyKind::Star) a->fail("preset", "a star cannot have an atmosphere");
-            c.atmosphere = read_atmosphere(*a, c);
-        }
-        b.reject_unknown_keys();
-        s.bodies.push_back(c);
-    }
-
-    auto st = r.child("stars");
-    s.stars.catalog = resolve_path(dir, st.string("catalog"));
-    if (!fs::is_regular_file(s.stars.catalog)) st.fail("catalog", "file \"" + s.stars.catalog + "\" does not exist");
-    s.stars.magnitude_limit = st.number_in("magnitude_limit", -2.0, 12.0, s.stars.magnitude_limit);
-    s.stars.psf_sigma_arcmin = st.number_in("psf_sigma_arcmin", 0.01, 600.0, s.stars.psf_sigma_arcmin);
-    s.stars.zero_mag_flux = st.number_in("zero_mag_flux", 0.0, 1e6, s.stars.zero_mag_flux);
-    st.reject_unknown_keys();
-    if (auto sh = r.optional_child("shadows")) s.shadows = read_shadows(*sh, s);
+    for (auto& b : bodies) s.bodies.push_back(read_body(b, static_cast<uint16_t>(s.bodies.size()), dir, names));
+    s.stars = read_stars(r.child("stars"), dir);
+    s.shadows = read_shadows(r.section("shadows"), s);
     if (auto g = r.optional_child("glare")) s.glare = read_glare(*g);
     r.reject_unknown_keys();
     return s;

@@ -1,5 +1,8 @@
 #pragma once
 // The scene: which bodies exist, their sizes, looks and ephemeris model, and the star field.
+// The file format, each field's default, range and meaning: configs/schema/scene.schema.json
+// (docs/CONFIG.md is written from it). The initialisers below are those defaults, for code that
+// builds a scene without a file; test_config_schema checks they match the schema.
 #include <glm/glm.hpp>
 
 #include <optional>

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
 
 namespace cupola {
@@ -120,6 +121,10 @@ DeviceModel model(std::string name, uint16_t vid, uint16_t pid, DeviceKind kind,
 }
 
 // ---- reading a device-table file -------------------------------------------------------------
+// Defaults and ranges of every field: configs/schema/devices.schema.json (JsonReader::declared_*).
+// What a schema cannot say is checked here: button fields past button 31, unsigned buttons,
+// logical_max above logical_min, a non-zero half_range, the layout as a whole (layout_problem)
+// and unique report ids and vendor:product ids.
 
 uint16_t usb_id(const JsonReader& r, const std::string& key) {
     const std::string s = r.string(key);
@@ -131,25 +136,25 @@ uint16_t usb_id(const JsonReader& r, const std::string& key) {
 
 HidField read_field(const JsonReader& r) {
     HidField f;
-    f.bit_offset = static_cast<uint32_t>(r.integer_in("bit_offset", 0, 8 * 1024 - 1));
-    f.bit_size = static_cast<uint32_t>(r.integer_in("bits", 1, 32));
-    f.is_signed = r.boolean("signed", false);
+    f.bit_offset = static_cast<uint32_t>(r.declared_integer("bit_offset"));
+    f.bit_size = static_cast<uint32_t>(r.declared_integer("bits"));
+    f.is_signed = r.declared_boolean("signed");
     const bool is_axis = r.has("axis"), is_buttons = r.has("first_button");
     if (is_axis == is_buttons) r.fail("axis", "a field has either \"axis\" or \"first_button\", not both or neither");
     if (is_buttons) {
         f.target = HidField::Target::Buttons;
-        f.first_button = static_cast<uint32_t>(r.integer_in("first_button", 0, 31));
+        f.first_button = static_cast<uint32_t>(r.required_integer("first_button"));
         if (f.first_button + f.bit_size > 32) r.fail("bits", "buttons would go past button 31");
         if (f.is_signed) r.fail("signed", "a button field is not signed");
     } else {
         f.target = HidField::Target::Axis;
-        f.axis = *nav_axis_from_name(r.one_of("axis", {"right", "up", "forward", "pitch_up", "yaw_left", "roll_ccw"}));
+        f.axis = *nav_axis_from_name(r.one_of("axis", r.declared_choices("axis")));
         const bool by_centre = r.has("centre") || r.has("half_range");
         const bool by_limits = r.has("logical_min") || r.has("logical_max");
         if (by_centre == by_limits)
             r.fail("half_range", "give either \"centre\" and \"half_range\" or \"logical_min\" and \"logical_max\"");
         if (by_centre) {
-            f.centre = r.number("centre", 0.0);
+            f.centre = r.number("centre", r.declaration("centre").at("default").get<double>());
             f.half_range = r.number("half_range");
         } else {
             const double lo = r.number("logical_min"), hi = r.number("logical_max");
@@ -158,7 +163,7 @@ HidField read_field(const JsonReader& r) {
             f.half_range = (hi - lo) / 2;
         }
         if (f.half_range == 0.0) r.fail("half_range", "must not be 0");
-        f.scale = r.number("scale", 1.0);
+        f.scale = r.number("scale", r.declaration("scale").at("default").get<double>());
     }
     r.reject_unknown_keys();
     return f;
@@ -166,25 +171,25 @@ HidField read_field(const JsonReader& r) {
 
 HidReport read_report(const JsonReader& r, bool report_ids) {
     HidReport rep;
-    if (report_ids) rep.id = static_cast<uint8_t>(r.integer_in("id", 0, 255));
+    if (report_ids) rep.id = static_cast<uint8_t>(r.required_integer("id"));
     for (const auto& fr : r.array("fields")) rep.fields.push_back(read_field(fr));
     size_t needed = 1;
     for (const auto& f : rep.fields) needed = std::max(needed, f.end_byte());
     // Default: every field must be there; a smaller min_bytes makes the later fields optional.
-    rep.min_bytes = static_cast<size_t>(r.integer_in("min_bytes", 1, 8 * 1024, static_cast<long long>(needed)));
+    rep.min_bytes = static_cast<size_t>(r.declared_integer("min_bytes", static_cast<long long>(needed)));
     r.reject_unknown_keys();
     return rep;
 }
 
 DeviceModel read_model(const JsonReader& r) {
     DeviceModel m;
-    m.name = r.string("name");
+    m.name = r.declared_string("name");
     if (m.name.empty()) r.fail("name", "must not be empty");
     m.vendor_id = usb_id(r, "vendor_id");
     m.product_id = usb_id(r, "product_id");
-    m.kind = r.one_of("kind", {"spacemouse", "gamepad"}) == "gamepad" ? DeviceKind::Gamepad : DeviceKind::SpaceMouse;
-    m.interface_number = static_cast<int>(r.integer_in("interface", -1, 255, -1));
-    m.layout.report_ids = r.boolean("report_ids", true);
+    m.kind = r.declared_choice("kind") == "gamepad" ? DeviceKind::Gamepad : DeviceKind::SpaceMouse;
+    m.interface_number = static_cast<int>(r.declared_integer("interface"));
+    m.layout.report_ids = r.declared_boolean("report_ids");
     const auto reports = r.array("reports");
     if (reports.empty()) r.fail("reports", "at least one report is needed");
     if (!m.layout.report_ids && reports.size() != 1)
@@ -239,7 +244,7 @@ std::vector<DeviceModel> default_device_table() {
 
 std::vector<DeviceModel> load_device_table(const std::string& json_file) {
     const nlohmann::json doc = JsonReader::parse_file(json_file);
-    const JsonReader top(doc, json_file, "");
+    const JsonReader top(doc, json_file, &config_schema("devices"));
     std::vector<DeviceModel> out;
     std::set<uint32_t> seen;
     const auto devices = top.array("devices");

@@ -1,8 +1,9 @@
 #pragma once
 // The navigation devices the master knows: USB vendor/product id, what kind of device it is, and
 // where its reports put the axes (hid_report_layout). default_device_table() covers common 3D
-// mice and gamepads; a JSON file (configs/input/devices.json shows the format) can add models or
-// replace a default one with the same vendor:product id.
+// mice and gamepads; a JSON file (format: configs/schema/devices.schema.json; example:
+// configs/input/devices.json) can add models or replace a default one with the same
+// vendor:product id.
 //
 // Axis signs of the defaults (NavAxes is in the camera frame: right, up, forward; pitch_up,
 // yaw_left, roll_ccw right-handed about the camera's +X, +Y, +Z):
