@@ -225,7 +225,7 @@ struct MasterNode::Loop {
     bool stopped() const { return node.stop_requested_; }
     nlohmann::json stats_json() const;
     void perform(const MasterActions& a);
-    void receive_until(Clock::time_point deadline);
+    void step_until(Clock::time_point deadline);
     void wait_for_channels();
     void resume();
     void frames();
@@ -275,9 +275,10 @@ void MasterNode::Loop::perform(const MasterActions& a) {
     for (const nlohmann::json& e : a.events) events.write(e);
 }
 
-// At most one message, stepped through the session; then the session's time-driven rules.
-void MasterNode::Loop::receive_until(Clock::time_point deadline) {
-    if (auto m = cupola::receive_until(wire, deadline)) perform(protocol.on_message(*m, Clock::now()));
+// One step of every wait: receive until the deadline (at most one message, stepped through the
+// session), then the session's time-driven rules, then the stats.
+void MasterNode::Loop::step_until(Clock::time_point deadline) {
+    if (auto m = receive_until(wire, deadline)) perform(protocol.on_message(*m, Clock::now()));
     perform(protocol.tick(Clock::now()));
     stats.tick([this] { return stats_json(); });
 }
@@ -289,7 +290,7 @@ void MasterNode::Loop::wait_for_channels() {
     spdlog::info("master: waiting up to {} ms for {} channel(s)", cluster.network.hello_wait_ms, ids.size());
     while (!protocol.all_live() && Clock::now() < until && !stopped() && !director.quit_requested()) {
         control.run(0, true, director, protocol.counters(), events);
-        receive_until(until);
+        step_until(until);
     }
     if (!protocol.all_live())
         spdlog::warn("master: starting with {} of {} channels; the others may join later",
@@ -335,7 +336,7 @@ bool MasterNode::Loop::frame(uint64_t f) {
     std::optional<double> input_ms;
     if (directed.input_used && directed.input_report_ns && sent_ns >= directed.input_report_ns)
         input_ms = input_latency.add(directed.input_report_ns, monotonic_ns());
-    while (!protocol.frame_complete() && !stopped()) receive_until(protocol.next_wake());
+    while (!protocol.frame_complete() && !stopped()) step_until(protocol.next_wake());
     if (stopped()) return false;
 
     const std::map<int, FrameReport> reports = protocol.end_frame();
@@ -377,12 +378,12 @@ void MasterNode::Loop::pace(uint64_t f) {
     if (cluster.frame_rate_hz <= 0) return;
     const auto next = run_start + std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>((f - start_frame + 1) / cluster.frame_rate_hz));
-    while (Clock::now() < next) receive_until(next);
+    while (Clock::now() < next) step_until(next);
 }
 
 void MasterNode::Loop::quit() {
     perform(protocol.start_quit(current_frame, Clock::now()));
-    while (!protocol.quit_done()) receive_until(protocol.next_wake());
+    while (!protocol.quit_done()) step_until(protocol.next_wake());
     for (int id : protocol.unconfirmed_quits()) spdlog::warn("master: channel {} did not confirm quit", id);
 }
 
