@@ -9,6 +9,8 @@
 //              decoded and fed to one Reassembler;
 //   Payload    bytes -> decode_snapshot / decode_hello / decode_frame_report / decode_welcome.
 //   Sessions   a script of authentic headers through the session guard (replay and restart rules).
+//   Protocol   a master and its slaves (MasterSession, SlaveSession) under a fuzz-chosen schedule of
+//              deliveries, losses, replays, forged bodies, restarts and time (fuzz_protocol.cpp).
 // Checked invariants (a violation prints what failed and aborts, which libFuzzer reports):
 //   * an accepted datagram keeps decode's contract (fragment index < count, the fragment lies
 //     inside the message, message length <= kMaxMessageLength, payload size = payload_length);
@@ -29,7 +31,11 @@
 #include <set>
 #include <vector>
 
+#include <spdlog/spdlog.h>
+
+#include "fuzz_protocol.hpp"
 #include "fuzz_wire_format.hpp"
+#include "session/handshake.hpp"
 #include "wire/byte_io.hpp"
 #include "wire/packet.hpp"
 #include "wire/reassembler.hpp"
@@ -139,15 +145,7 @@ void run_sessions(Reader& r) {
     constexpr uint64_t kSelf = 0x5E1F;
     const uint64_t sessions[4] = {0, 0xA1, 0xA2, 0xA3};
     const uint64_t targets[3] = {0, kSelf, 0x0DD};
-    SessionGuard g(kSelf, [master_role](const PacketHeader& h) {
-        if (master_role) {
-            if (h.sender == kMasterSender) return SessionOpen::Ignore;
-            if (h.type != PacketType::Hello) return SessionOpen::Reject;
-            return h.to_session == kSelf ? SessionOpen::Open : SessionOpen::Unverified;
-        }
-        if (h.sender != kMasterSender) return SessionOpen::Ignore;
-        return h.type == PacketType::Welcome && h.to_session == kSelf ? SessionOpen::Open : SessionOpen::Unverified;
-    });
+    SessionGuard g(kSelf, master_role ? master_open_policy(kSelf) : slave_open_policy(kSelf));
     std::map<uint16_t, std::set<uint64_t>> retired;
     uint64_t now = 0;
     for (int step = 0; step < 256 && !r.empty(); ++step) {
@@ -341,6 +339,12 @@ void run_payload(Reader& r) {
 
 }  // namespace
 
+// The sessions log what an operator would want to see; here that is noise.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    spdlog::set_level(spdlog::level::off);
+    return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size == 0) return 0;
     Reader r(data, size);
@@ -359,6 +363,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             break;
         case Mode::Payload:
             run_payload(r);
+            break;
+        case Mode::Protocol:
+            run_protocol(r);
             break;
     }
     return 0;

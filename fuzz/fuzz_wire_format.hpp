@@ -27,6 +27,18 @@
 //   Mode::Sessions   u8 role (even: slave policy, odd: master policy), then steps of
 //                    {u8 type, u16 sender, u8 session_sel, u8 to_sel, u32 sequence, u16 dt_ms}
 //                    through one SessionGuard (wire/session_guard.hpp).
+//   Mode::Protocol   u8 channels_sel (1 + sel % kMaxProtocolChannels slave processes, channels 0..),
+//                    then steps until the input ends (at most kMaxSteps), each u8 op % kProtocolOpCount
+//                    (fuzz_protocol.hpp; datagrams in flight are kept in send order):
+//     ProtocolOp::Tick     u16 dt_ms: time advances, then every session's tick() runs.
+//     ProtocolOp::Next     the oldest datagram in flight arrives (through the receiver's guard).
+//     ProtocolOp::Drop     the oldest datagram in flight is lost.
+//     ProtocolOp::Replay   u16 sel: a datagram that left earlier (the sel % size-th) arrives again.
+//     ProtocolOp::Frame    the master ends its frame (if any) and starts the next.
+//     ProtocolOp::Quit     the master starts telling the slaves to quit.
+//     ProtocolOp::Restart  u8 who: who % (n + 1) == n restarts the master, else that slave.
+//     ProtocolOp::Forge    u8 type, u8 from_sel, u8 to_sel, u16 frame, u16 len, len body bytes: an
+//                          authentic message with that body (from_sel % (n + 1) == n: the master's).
 // Integers are little-endian; reading past the end yields zeros.
 #include <cstddef>
 #include <cstdint>
@@ -44,8 +56,8 @@ inline AuthKey harness_key() {
     return k;
 }
 
-enum class Mode : uint8_t { Raw = 0, RawSigned = 1, Reassembly = 2, Payload = 3, Sessions = 4 };
-constexpr uint8_t kModeCount = 5;
+enum class Mode : uint8_t { Raw = 0, RawSigned = 1, Reassembly = 2, Payload = 3, Sessions = 4, Protocol = 5 };
+constexpr uint8_t kModeCount = 6;
 
 enum class Op : uint8_t { Encode = 0, Deliver = 1, Tamper = 2 };
 constexpr uint8_t kOpCount = 3;
@@ -55,6 +67,19 @@ constexpr uint8_t kEditCount = 4;
 
 enum class PayloadKind : uint8_t { Snapshot = 0, Hello = 1, FrameReport = 2, Welcome = 3 };
 constexpr uint8_t kPayloadKindCount = 4;
+
+enum class ProtocolOp : uint8_t {
+    Tick = 0,
+    Next = 1,
+    Drop = 2,
+    Replay = 3,
+    Frame = 4,
+    Quit = 5,
+    Restart = 6,
+    Forge = 7
+};
+constexpr uint8_t kProtocolOpCount = 8;
+constexpr uint8_t kMaxProtocolChannels = 3;
 
 constexpr uint8_t kEncodeDeliverNow = 1;  // also decode + add every fragment, in order, at once
 constexpr uint8_t kTamperKeep = 1;        // put the tampered datagram back into the pool

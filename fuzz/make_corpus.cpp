@@ -297,6 +297,46 @@ int main(int argc, char** argv) {
         step(0, 1, 1, 0, 3, 900);  // the old session: stale
         save("sessions-restart", w);
     }
+    // Protocol scripts: a handshake, two frames and a quit; then one with losses, a replayed
+    // hello, a master restart and a forged report.
+    {
+        Writer w = start(Mode::Protocol);
+        w.u8(0);  // one channel
+        auto op = [&](ProtocolOp o) { w.u8(static_cast<uint8_t>(o)); };
+        op(ProtocolOp::Tick), w.u16(0);                    // hello to session 0
+        for (int i = 0; i < 3; ++i) op(ProtocolOp::Next);  // welcome, confirming hello, joined
+        for (int f = 0; f < 2; ++f) {
+            op(ProtocolOp::Frame);
+            op(ProtocolOp::Next);  // the snapshot: rendered and reported
+            op(ProtocolOp::Next);  // the report
+            op(ProtocolOp::Tick), w.u16(40);
+        }
+        op(ProtocolOp::Quit);
+        op(ProtocolOp::Next), op(ProtocolOp::Next);
+        op(ProtocolOp::Tick), w.u16(60);
+        op(ProtocolOp::Tick), w.u16(400);
+        save("protocol-session", w);
+    }
+    {
+        Writer w = start(Mode::Protocol);
+        w.u8(1);  // two channels
+        auto op = [&](ProtocolOp o) { w.u8(static_cast<uint8_t>(o)); };
+        op(ProtocolOp::Tick), w.u16(0);
+        op(ProtocolOp::Drop);  // channel 0's hello is lost
+        for (int i = 0; i < 3; ++i) op(ProtocolOp::Next);
+        op(ProtocolOp::Replay), w.u16(1);  // a hello again
+        op(ProtocolOp::Tick), w.u16(120);
+        for (int i = 0; i < 6; ++i) op(ProtocolOp::Next);
+        op(ProtocolOp::Frame);
+        for (int i = 0; i < 4; ++i) op(ProtocolOp::Next);
+        op(ProtocolOp::Restart), w.u8(2);  // a new master
+        op(ProtocolOp::Tick), w.u16(1100);
+        for (int i = 0; i < 8; ++i) op(ProtocolOp::Next);
+        op(ProtocolOp::Forge), w.u8(1), w.u8(0), w.u8(1), w.u16(0), w.u16(3), w.u8(1), w.u8(2), w.u8(3);
+        op(ProtocolOp::Next);
+        op(ProtocolOp::Tick), w.u16(2500);
+        save("protocol-restarts", w);
+    }
     std::printf("cupola-fuzz-wire-corpus: %d seeds written to %s\n", written, dir.c_str());
     return 0;
 }

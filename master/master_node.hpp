@@ -54,6 +54,8 @@ public:
     void stop() { stop_requested_ = true; }
 
 private:
+    struct Loop;  // one run's wire, protocol session and frame steps (master_node.cpp)
+
     ClusterConfig cluster_;
     SceneConfig scene_;
     ShowScript show_;

@@ -23,6 +23,8 @@ public:
     void stop() { stop_requested_ = true; }
 
 private:
+    struct Loop;  // one run's renderer, wire and protocol session (slave_node.cpp)
+
     ClusterConfig cluster_;
     ChannelConfig channel_;
     SlaveOptions options_;

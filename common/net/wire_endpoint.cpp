@@ -6,6 +6,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "session/handshake.hpp"
 #include "util/monotonic_clock.hpp"
 
 namespace cupola {
@@ -200,13 +201,8 @@ WireEndpoint open_master_endpoint(const ClusterConfig& cfg, const AuthKey& key, 
     s.set_receive_buffer(1 << 20);
     if (cfg.network.transport == Transport::Multicast) s.set_multicast_sender(cfg.network.interface_address);
     if (cfg.network.transport == Transport::Broadcast) s.enable_broadcast();
-    auto policy = [session](const PacketHeader& h) {
-        if (h.sender == kMasterSender) return SessionOpen::Ignore;  // our own multicast, looped back
-        if (h.type != PacketType::Hello) return SessionOpen::Reject;
-        return h.to_session == session ? SessionOpen::Open : SessionOpen::Unverified;
-    };
-    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), policy, kMasterSender,
-                        static_cast<size_t>(cfg.network.max_datagram_bytes), "master");
+    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), master_open_policy(session),
+                        kMasterSender, static_cast<size_t>(cfg.network.max_datagram_bytes), "master");
 }
 
 WireEndpoint open_slave_endpoint(const ClusterConfig& cfg, const ChannelConfig& channel, const AuthKey& key,
@@ -228,12 +224,7 @@ WireEndpoint open_slave_endpoint(const ClusterConfig& cfg, const ChannelConfig& 
             s.bind(parse_host_port(channel.unicast_address));
             break;
     }
-    auto policy = [session](const PacketHeader& h) {
-        if (h.sender != kMasterSender) return SessionOpen::Ignore;  // another node's traffic
-        if (h.type == PacketType::Welcome && h.to_session == session) return SessionOpen::Open;
-        return SessionOpen::Unverified;
-    };
-    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), policy,
+    return WireEndpoint(std::move(s), PacketCodec(cfg.cluster_id, key, session), slave_open_policy(session),
                         static_cast<uint16_t>(channel.id), static_cast<size_t>(n.max_datagram_bytes),
                         "slave " + channel.name);
 }

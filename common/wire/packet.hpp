@@ -40,7 +40,8 @@ enum class PacketType : uint8_t {
     Quit = 2,        // master -> slaves: stop after this frame
     Welcome = 3,     // master -> one slave (to_session): proves the master's session is live now
     Hello = 16,      // slave -> master: channel joins or rejoins
-    Heartbeat = 17,  // slave -> master: still alive (while idle)
+    Heartbeat = 17,  // reserved: a valid type on the wire, but nothing sends it and a master logs it as
+                     // unexpected (a live slave reports every frame; hellos cover one without frames)
     FrameDone = 18,  // slave -> master: FrameReport
     QuitAck = 19,    // slave -> master: quit received
 };

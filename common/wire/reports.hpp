@@ -1,5 +1,5 @@
 #pragma once
-// Control message bodies: slave -> master (hello, heartbeat, quit-ack, frame reports) and the
+// Control message bodies: slave -> master (hello, quit-ack, frame reports) and the
 // master's welcome.
 #include <cstdint>
 #include <string>
@@ -7,7 +7,7 @@
 
 namespace cupola {
 
-// Hello, Heartbeat and QuitAck carry this.
+// Hello and QuitAck carry this.
 struct HelloMessage {
     uint16_t channel = 0;
     uint32_t process_id = 0;  // for the operator's log

@@ -1,7 +1,8 @@
 #pragma once
-// One channel played at the wire level by a test or benchmark process: it joins the master
-// (hello / welcome / hello), answers every snapshot at once with its FrameDone, acknowledges quit,
-// and keeps what it received (time, frame, camera) so the caller can wait for a change.
+// One channel played at the wire level by a test or benchmark process, through the slave's own
+// session code (session/slave_session.hpp): it joins the master (hello / welcome / hello), answers
+// every new snapshot at once with its FrameDone, acknowledges quit, and keeps what it received
+// (time, frame, camera) so the caller can wait for a change.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -13,6 +14,7 @@
 #include "config/cluster_config.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
+#include "support/wire_handshake.hpp"
 #include "util/monotonic_clock.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
@@ -60,41 +62,28 @@ public:
     bool quit_seen() const { return quit_; }
 
 private:
+    // The channel's side of the protocol is a SlaveSession (the slave process's own), with
+    // "render" meaning: note what arrived and report at once. It never gives up for idleness.
     void loop() {
-        const auto master = master_report_address(cfg_);
-        uint64_t master_session = 0;
-        auto last_hello = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+        using Clock = std::chrono::steady_clock;
+        SlaveSession session = slave_session_for(cfg_.channels[0], std::chrono::hours(24));
         while (!stop_) {
-            if (!master_session && std::chrono::steady_clock::now() - last_hello > std::chrono::milliseconds(100)) {
-                HelloMessage h;
-                h.channel = static_cast<uint16_t>(cfg_.channels[0].id);
-                ep_.send(PacketType::Hello, 0, encode_hello(h), {master}, 0);
-                last_hello = std::chrono::steady_clock::now();
-            }
-            auto m = ep_.receive(20);
-            if (!m) continue;
+            send_all(ep_, cfg_, session.tick(Clock::now()));
+            if (auto m = receive_until(ep_, Clock::now() + std::chrono::milliseconds(20)))
+                session.receive(std::move(*m));
             const uint64_t now = monotonic_ns();
-            if (m->message.type == PacketType::Welcome && m->opened) {
-                master_session = m->message.session;
-                HelloMessage h;
-                h.channel = static_cast<uint16_t>(cfg_.channels[0].id);
-                ep_.send(PacketType::Hello, 0, encode_hello(h), {master}, master_session);
-            } else if (m->message.type == PacketType::Snapshot && m->verified) {
-                const Snapshot s = decode_snapshot(m->message.payload.data(), m->message.payload.size());
-                FrameReport r;
-                r.channel = static_cast<uint16_t>(cfg_.channels[0].id);
-                r.frame = s.frame;
-                r.snapshot_hash = snapshot_hash(m->message.payload);
-                ep_.send(PacketType::FrameDone, s.frame, encode_frame_report(r), {master});
+            SlaveActions a = session.step(Clock::now());
+            send_all(ep_, cfg_, a);
+            if (session.quitting()) quit_ = true;
+            if (!a.render) continue;
+            const Snapshot& s = a.render->snapshot;
+            {
                 std::lock_guard lock(mutex_);
-                if (got_.empty() || got_.back().frame != s.frame)
-                    got_.push_back(
-                        {now, s.frame, s.camera_position_m - s.bodies.at(body_).position_m, s.camera_orientation});
-                cv_.notify_all();
-            } else if (m->message.type == PacketType::Quit && m->verified) {
-                ep_.send(PacketType::QuitAck, m->message.frame, {}, {master});
-                quit_ = true;
+                got_.push_back(
+                    {now, s.frame, s.camera_position_m - s.bodies.at(body_).position_m, s.camera_orientation});
             }
+            cv_.notify_all();
+            send_all(ep_, cfg_, session.rendered(FrameReport{}, ep_.counters().total_rejected()));
         }
     }
 

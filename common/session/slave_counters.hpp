@@ -1,5 +1,5 @@
 #pragma once
-// What a slave counts besides the wire's own counters (net/wire_endpoint.hpp).
+// What a slave counts besides the wire's own counters (net/wire_endpoint.hpp); SlaveSession keeps them.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 
