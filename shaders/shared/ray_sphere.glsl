@@ -7,8 +7,8 @@
 //
 // Discriminants are formed as (R - r)(R + r) + (r mu)^2: in float, R^2 - r^2 would lose the
 // altitude of a camera near the ground (R^2 ~ 4e13 has an ulp of 4e6 m^2), and the ground/sky
-// decision at the horizon's mu +- 1e-6 with it (notes, hard case 1). Results are total (no NaN
-// for finite input) and clamped: distances at 0.
+// decision at the horizon's mu +- 1e-6 with it. Results are total (no NaN for finite input) and
+// clamped: distances at 0.
 #ifndef __cplusplus
 #define real float
 #endif
@@ -32,7 +32,7 @@ real ray_sphere_near_m(real r_m, real mu, real radius_m) {
 // True when the ray meets the sphere going down: mu below the horizon's cosine
 // -sqrt(1 - (radius / r)^2). A ray exactly at the horizon grazes and does not hit; from on or
 // inside the sphere every downward ray hits it. Callers decide this once per ray and pass the
-// flag on (notes, hard case 1).
+// flag on, as Bruneton 2017 does: deciding again from rounded (r, mu) can flip the answer.
 bool ray_hits_sphere(real r_m, real mu, real radius_m) {
     return mu < 0.0 && (r_m <= radius_m || ray_sphere_discriminant_m2(r_m, mu, radius_m) > 0.0);
 }
