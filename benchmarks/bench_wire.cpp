@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "net/wire_endpoint.hpp"
+#include "support/wire_handshake.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 
@@ -38,12 +39,13 @@ void BM_SnapshotLoopbackRoundTrip(benchmark::State& state) {
     AuthKey key{};
     key.fill(7);
     WireEndpoint master = open_master_endpoint(cfg, key, new_session_nonce());
-    WireEndpoint slave = open_slave_endpoint(cfg, ch, key, new_session_nonce());
+    std::vector<WireEndpoint> slaves;
+    slaves.push_back(open_slave_endpoint(cfg, ch, key, new_session_nonce()));
+    WireEndpoint& slave = slaves.front();
     const auto dest = snapshot_destinations(cfg);
-    // The slave acts only on a master session that welcomed it (wire/session_guard.hpp).
-    master.send(PacketType::Welcome, 0, encode_welcome({0, 0}), dest, slave.session());
-    if (auto w = slave.receive(1000); !w || !w->opened) {
-        state.SkipWithError("no welcome on loopback");
+    // The slave acts only on a master session it joined: the sessions' own handshake.
+    if (!test::handshake(master, slaves, cfg)) {
+        state.SkipWithError("no handshake on loopback");
         return;
     }
     Snapshot snap = snapshot_with(static_cast<int>(state.range(0)));
