@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -16,6 +17,26 @@ float srgb_decode(float c) {
     c = std::clamp(c, 0.0f, 1.0f);
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
+
+// srgb_decode for the few distinct values of an 8-bit image (k / 255): each computed once; a
+// value that is not one of them is computed as it comes, so the result is srgb_decode's exactly.
+class SrgbDecodeCache {
+public:
+    float operator()(float v) {
+        const long k = std::lround(v * 255.0f);
+        if (k < 0 || k > 255) return srgb_decode(v);
+        Entry& e = entries_[static_cast<size_t>(k)];
+        if (!e.valid || e.in != v) e = {true, v, srgb_decode(v)};
+        return e.out;
+    }
+
+private:
+    struct Entry {
+        bool valid = false;
+        float in = 0.0f, out = 0.0f;
+    };
+    std::array<Entry, 256> entries_{};
+};
 
 uint32_t hash32(uint32_t x) {  // lowbias32 (Chris Wellons)
     x ^= x >> 16;
@@ -50,13 +71,15 @@ BodyImage generate_cratered_surface(int width, int height, unsigned seed) {
     constexpr double pi = std::numbers::pi;
     struct Crater {
         double x, y, z, radius, depth;
+        double cos_reach;  // below this cosine a pixel is beyond 1.2 radii: outside floor and rim
     };
     std::vector<Crater> craters;
     for (uint32_t i = 0; i < 160; ++i) {
         const double z = 2.0 * hash01(seed + 1, i) - 1.0, lon = 2.0 * pi * hash01(seed + 2, i);
         const double r = std::sqrt(1.0 - z * z);
         const double size = 0.02 + 0.12 * std::pow(hash01(seed + 3, i), 3.0);  // radians, mostly small
-        craters.push_back({r * std::cos(lon), r * std::sin(lon), z, size, 0.5 + 0.5 * hash01(seed + 4, i)});
+        craters.push_back(
+            {r * std::cos(lon), r * std::sin(lon), z, size, 0.5 + 0.5 * hash01(seed + 4, i), std::cos(1.2 * size)});
     }
     for (int y = 0; y < height; ++y) {
         const double lat = pi / 2 - (y + 0.5) / height * pi;
@@ -75,7 +98,10 @@ BodyImage generate_cratered_surface(int width, int height, unsigned seed) {
             if (value_noise(static_cast<float>(x) * 4 / width, static_cast<float>(y) * 4 / width, 4, seed + 20) > 0.62f)
                 shade *= 0.7;
             for (const auto& c : craters) {
-                const double d = std::acos(std::clamp(px * c.x + py * c.y + pz * c.z, -1.0, 1.0)) / c.radius;
+                // Far from the crater (the floor and rim end at 1.15 radii): no acos, no effect.
+                const double cos_angle = px * c.x + py * c.y + pz * c.z;
+                if (cos_angle < c.cos_reach) continue;
+                const double d = std::acos(std::clamp(cos_angle, -1.0, 1.0)) / c.radius;
                 if (d < 0.85)
                     shade *= 1.0 - 0.25 * c.depth;  // floor
                 else if (d < 1.15)
@@ -106,10 +132,11 @@ BodyImage load_body_image(const std::string& texture) {
         throw std::runtime_error("cannot read body texture \"" + texture + "\": " + in->geterror());
     const bool is_float = spec.format.is_floating_point();  // EXR/HDR: already linear
     BodyImage img{spec.width, spec.height, std::vector<float>(static_cast<size_t>(spec.width) * spec.height * 3)};
+    SrgbDecodeCache decode;
     for (size_t i = 0; i < static_cast<size_t>(spec.width) * spec.height; ++i)
         for (int c = 0; c < 3; ++c) {
             const float v = pixels[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
-            img.rgb[i * 3 + c] = is_float ? v : srgb_decode(v);
+            img.rgb[i * 3 + c] = is_float ? v : decode(v);
         }
     return img;
 }
