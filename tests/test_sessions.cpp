@@ -56,10 +56,7 @@ std::optional<ReceivedMessage> deliver(Peer& from, Peer& to, PacketType type, ui
     return rm;
 }
 
-std::optional<ReceivedMessage> deliver(Peer& from, Peer& to, const MasterSend& s) {
-    return deliver(from, to, s.type, s.frame, s.payload, s.to_session);
-}
-std::optional<ReceivedMessage> deliver(Peer& from, Peer& to, const SlaveSend& s) {
+std::optional<ReceivedMessage> deliver(Peer& from, Peer& to, const SessionSend& s) {
     return deliver(from, to, s.type, s.frame, s.payload, s.to_session);
 }
 

@@ -22,6 +22,7 @@
 
 #include "net/wire_endpoint.hpp"
 #include "session/slave_counters.hpp"
+#include "session/session_send.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 
@@ -36,13 +37,8 @@ struct SlaveSessionConfig {
     std::string log_name = "slave";                                // "slave <channel name>"
 };
 
-// A message for the master (report address), answering its session `to_session`.
-struct SlaveSend {
-    PacketType type = PacketType::Hello;
-    uint64_t frame = 0;
-    std::vector<uint8_t> payload;
-    uint64_t to_session = 0;
-};
+// A datagram for the master's report address (common/session/session_send.hpp).
+using SlaveSend = SessionSend;
 
 // Render this snapshot, then hand the report to SlaveSession::rendered().
 struct RenderJob {

@@ -22,17 +22,13 @@
 #include "frame_barrier.hpp"
 #include "master_counters.hpp"
 #include "net/wire_endpoint.hpp"
+#include "session/session_send.hpp"
 #include "wire/reports.hpp"
 
 namespace cupola {
 
-// A message for every snapshot destination, answering the session `to_session` (0: anyone).
-struct MasterSend {
-    PacketType type = PacketType::Snapshot;
-    uint64_t frame = 0;
-    std::vector<uint8_t> payload;
-    uint64_t to_session = 0;
-};
+// A datagram for every snapshot destination (common/session/session_send.hpp).
+using MasterSend = SessionSend;
 
 struct MasterActions {
     std::vector<MasterSend> sends;
