@@ -4,7 +4,6 @@
 // (calibration/projector_warp.hpp) under the reading switches of calibration/mpcdi_reading.hpp.
 // Profiles 2d and 3d, geometry levels 1 and 2, colour levels 1 and 2; v2.0's profile/geometry/
 // color attributes or v1's single `level`; attribute names case-insensitive (§3.5.2).
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,10 +14,11 @@
 namespace cupola {
 
 struct MpcdiFileRef {
-    std::string path;             // inside the package
-    int component_depth = 1;      // 1 | 3
-    int bit_depth = 8;            // 8 | 16
-    double gamma_embedded = 1.0;  // alpha: linear = stored^gamma_embedded (§2.5.1.2.4)
+    std::string path;                   // inside the package
+    int component_depth = 1;            // 1 | 3
+    int bit_depth = 8;                  // 8 | 16
+    double gamma_embedded = 1.0;        // alpha: linear = stored^gamma_embedded (§2.5.1.2.4)
+    bool gamma_embedded_given = false;  // also the projector's gamma (PyMPCDI's targetGamma)
     bool given = false;
 };
 
@@ -56,9 +56,9 @@ private:
     int geometry_level_ = 1;
     int color_level_ = 1;
     std::vector<MpcdiRegionInfo> regions_;
-    std::map<std::string, std::string> entries_;  // zip entry name -> bytes
+    std::string zip_bytes_;  // the package; entries are read from it when a region is read
 
-    const std::string& entry(const std::string& path, const std::string& region, const std::string& field) const;
+    std::string entry(const std::string& path, const std::string& field) const;
     friend struct MpcdiPackageParser;
 };
 
