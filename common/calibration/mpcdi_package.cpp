@@ -17,7 +17,7 @@
 namespace cupola {
 
 // Reads mpcdi.xml into the package's fields. Attribute and element names are compared ignoring
-// case (VESA MPCDI v2.0 (2013) §3.5.2: 2.0 writes xResolution, 1.0 files Xresolution).
+// case (VESA MPCDI v2.0 (2015) §3.5.2: 2.0 writes xResolution, 1.0 files Xresolution).
 struct MpcdiPackageParser {
     const std::string& name;
 
