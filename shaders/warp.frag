@@ -14,6 +14,7 @@ uniform float u_exposure;
 uniform float u_gamma;
 uniform int u_encode;         // PROJECTOR_ENCODE_*
 uniform int u_max_taps;       // footprint box filter: most taps per axis (1: one tap)
+uniform bool u_identity;      // no calibration: u_grid is not read
 
 layout(location = 0) out vec4 out_linear;
 layout(location = 1) out vec4 out_encoded;
@@ -26,23 +27,35 @@ struct WarpPoint {
     vec2 d_dy;  // d(u, v) per raster pixel down
 };
 
-// p: raster position in pixels, y from the top. The outer cells extend linearly to the edge.
+// p: raster position in pixels, y from the top. Beyond the outer grid points (half a cell in
+// fill layout) the edge value holds, as common/calibration/reference_warp.hpp rules.
 WarpPoint warp_lookup(vec2 p) {
+    WarpPoint w;
+    if (u_identity) {  // no calibration: the raster is the content
+        w.shown = true;
+        w.uv = vec2(p.x / u_raster.x, 1.0 - p.y / u_raster.y);
+        w.intensity = 1.0;
+        w.d_dx = vec2(1.0 / u_raster.x, 0.0);
+        w.d_dy = vec2(0.0, -1.0 / u_raster.y);
+        return w;
+    }
     ivec2 n = textureSize(u_grid, 0);
-    vec2 g = p * vec2(n) / u_raster - 0.5;  // grid point (i, j) sits at g = (i, j)
-    ivec2 i0 = clamp(ivec2(floor(g)), ivec2(0), n - 2);
+    vec2 g_free = p * vec2(n) / u_raster - 0.5;  // grid point (i, j) sits at g = (i, j)
+    vec2 g = clamp(g_free, vec2(0.0), vec2(n - 1));
+    ivec2 i0 = min(ivec2(floor(g)), n - 2);
     vec2 f = g - vec2(i0);
     vec4 p00 = texelFetch(u_grid, i0, 0);
     vec4 p10 = texelFetch(u_grid, i0 + ivec2(1, 0), 0);
     vec4 p01 = texelFetch(u_grid, i0 + ivec2(0, 1), 0);
     vec4 p11 = texelFetch(u_grid, i0 + ivec2(1, 1), 0);
-    WarpPoint w;
     w.shown = !(any(isnan(p00.xy)) || any(isnan(p10.xy)) || any(isnan(p01.xy)) || any(isnan(p11.xy)));
     vec4 v = mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
     w.uv = v.xy;
     w.intensity = v.z;
-    w.d_dx = mix(p10.xy - p00.xy, p11.xy - p01.xy, f.y) * (float(n.x) / u_raster.x);
-    w.d_dy = mix(p01.xy - p00.xy, p11.xy - p10.xy, f.x) * (float(n.y) / u_raster.y);
+    // The Jacobian of the bilinear patch (0 along an axis where the edge value holds).
+    vec2 inside = vec2(equal(g, g_free));
+    w.d_dx = mix(p10.xy - p00.xy, p11.xy - p01.xy, f.y) * (inside.x * float(n.x) / u_raster.x);
+    w.d_dy = mix(p01.xy - p00.xy, p11.xy - p10.xy, f.x) * (inside.y * float(n.y) / u_raster.y);
     w.shown = w.shown && all(greaterThanEqual(w.uv, vec2(0.0))) && all(lessThanEqual(w.uv, vec2(1.0)));
     return w;
 }

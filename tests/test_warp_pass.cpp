@@ -63,12 +63,13 @@ ProjectorWarp grid_warp(int w, int h, int columns, int rows, F uv_at_pixel) {
 }
 
 // The contract's lookup on the CPU: the grid value (u, v, intensity) at raster position (px, py),
-// bilinear, the outer cells extended linearly; nullopt where a corner is NaN.
+// bilinear, the edge value holding beyond the outer points; nullopt where a corner is NaN.
 std::optional<glm::dvec3> cpu_lookup(const ProjectorWarp& w, double px, double py) {
     const WarpGrid& g = w.grid;
-    const double gx = px * g.columns / w.raster_width - 0.5, gy = py * g.rows / w.raster_height - 0.5;
-    const int i0 = std::clamp(static_cast<int>(std::floor(gx)), 0, g.columns - 2);
-    const int j0 = std::clamp(static_cast<int>(std::floor(gy)), 0, g.rows - 2);
+    const double gx = std::clamp(px * g.columns / w.raster_width - 0.5, 0.0, g.columns - 1.0);
+    const double gy = std::clamp(py * g.rows / w.raster_height - 0.5, 0.0, g.rows - 1.0);
+    const int i0 = std::min(static_cast<int>(std::floor(gx)), g.columns - 2);
+    const int j0 = std::min(static_cast<int>(std::floor(gy)), g.rows - 2);
     const double fx = gx - i0, fy = gy - j0;
     auto at = [&](int i, int j) {
         const size_t k = static_cast<size_t>(j) * g.columns + i;
@@ -113,8 +114,8 @@ TEST(WarpPass, AHalfTurnIsExact) {
     context();
     const int w = 40, h = 30;
     const Content content(w, h, [](int x, int y) { return sh::vec4(x / 40.0f, y / 30.0f, 0.5f, 1); });
-    // Raster pixel (x, y from the top) shows content texel (w - 1 - x, y from the bottom): a 2x2 grid.
-    WarpPass pass(grid_warp(w, h, 2, 2, [&](double px, double py) { return glm::dvec2(1.0 - px / w, py / h); }), w, h);
+    // Raster pixel (x, y from the top) shows content texel (w - 1 - x, y from the bottom).
+    WarpPass pass(grid_warp(w, h, w, h, [&](double px, double py) { return glm::dvec2(1.0 - px / w, py / h); }), w, h);
     pass.draw(content.texture->id(), 1.0);
     const Image lin = pass.read_linear();
     for (int y = 0; y < h; ++y)
@@ -184,8 +185,8 @@ TEST(WarpPass, BlendMapsIntensityAndGammaFollowTheSharedRule) {
     context();
     const int w = 40, h = 30;
     const Content content(w, h, [](int x, int y) { return sh::vec4(x / 40.0f, y / 30.0f, 1.1f, 1); });
-    ProjectorWarp warp = grid_warp(w, h, 2, 2, [&](double px, double py) { return glm::dvec2(px / w, 1.0 - py / h); });
-    warp.grid.intensity = {1.0f, 0.5f, 0.8f, 0.2f};
+    ProjectorWarp warp = grid_warp(w, h, 8, 6, [&](double px, double py) { return glm::dvec2(px / w, 1.0 - py / h); });
+    for (int k = 0; k < 48; ++k) warp.grid.intensity.push_back(0.2f + 0.8f * float((k * 7) % 48) / 47.0f);
     warp.alpha = BlendMap{5, 4, {}};
     for (int k = 0; k < 20; ++k) warp.alpha.value.push_back(0.3f + 0.035f * k);
     warp.beta = BlendMap{3, 3, {0.0f, 0.02f, 0.04f, 0.06f, 0.08f, 0.1f, 0.12f, 0.14f, 0.16f}};
@@ -205,7 +206,7 @@ TEST(WarpPass, BlendMapsIntensityAndGammaFollowTheSharedRule) {
         for (int x = 0; x < w; ++x) {
             const sh::vec2 t((x + 0.5f) / w, (y + 0.5f) / h);
             const glm::dvec3 g = *cpu_lookup(warp, x + 0.5, y + 0.5);
-            const sh::vec3 c = sh::vec3(content.data.at(x, h - 1 - y)) * static_cast<float>(exposure);
+            const sh::vec3 c = sh::vec3(content.sample(glm::dvec2(g))) * static_cast<float>(exposure);
             const sh::vec3 want = sh::projector_blend(c, sh::textureLod(sh::sampler2D{&alpha}, t, 0.0).r,
                                                       static_cast<float>(g.z), sh::textureLod({&beta}, t, 0.0).r);
             const sh::vec3 code = sh::projector_encode(want, 2.4f, sh::PROJECTOR_ENCODE_GAMMA) * 255.0f;
@@ -227,7 +228,7 @@ TEST(WarpPass, FootprintFilterApproachesTheAreaAverage) {
         const double x = (px - w / 2.0) / w * s, y = (h / 2.0 - py) / h * s;
         return glm::dvec2(0.5 + std::cos(a) * x - std::sin(a) * y, 0.5 + std::sin(a) * x + std::cos(a) * y);
     };
-    const ProjectorWarp warp = grid_warp(w, h, 2, 2, uv_at);
+    const ProjectorWarp warp = grid_warp(w, h, w, h, uv_at);
     std::vector<double> err_one_tap, err_filtered;
     for (int taps : {1, 4}) {
         WarpPass pass(warp, n, n, WarpOptions{WarpOptions::Encode::Gamma, taps});

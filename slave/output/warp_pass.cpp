@@ -71,17 +71,6 @@ std::vector<T> read_rows(GLuint fbo, int w, int h, GLenum type) {
 
 }  // namespace
 
-ProjectorWarp identity_projector_warp(int width, int height) {
-    ProjectorWarp w;
-    w.source = "identity " + std::to_string(width) + "x" + std::to_string(height);
-    w.raster_width = width;
-    w.raster_height = height;
-    w.grid.columns = w.grid.rows = 2;
-    // Fill layout: points at 1/4 and 3/4 of the raster; v up, so the top row has v = 3/4.
-    w.grid.uv = {{0.25, 0.75}, {0.75, 0.75}, {0.25, 0.25}, {0.75, 0.25}};
-    return w;
-}
-
 // The GL objects of one pass. The slave/gl wrappers hold the float textures, the program and the
 // linear target; the encoded RGBA8 target, the framebuffers drawing both at once and the
 // content's sampler are plain GL names owned here.
@@ -91,7 +80,8 @@ struct WarpPass::Gpu {
     std::unique_ptr<GlTexture> grid, alpha, beta, linear;
     GLuint encoded = 0, linear_fbo = 0, encoded_fbo = 0, both_fbo = 0, sampler = 0;
 
-    Gpu(const ProjectorWarp& w);
+    // w == nullptr: identity (a placeholder grid, no maps).
+    Gpu(const ProjectorWarp* w, int width, int height);
     ~Gpu() {
         glDeleteSamplers(1, &sampler);
         glDeleteFramebuffers(1, &both_fbo);
@@ -102,17 +92,19 @@ struct WarpPass::Gpu {
     void make_targets(int width, int height);
 };
 
-WarpPass::Gpu::Gpu(const ProjectorWarp& w) {
-    const std::vector<glm::vec4> texels = grid_texels(w.grid);
-    grid = std::make_unique<GlTexture>(w.grid.columns, w.grid.rows, texels.data(), GL_NEAREST);
-    alpha = map_texture(w.alpha, 1.0f);
-    beta = map_texture(w.beta, 0.0f);
+WarpPass::Gpu::Gpu(const ProjectorWarp* w, int width, int height) {
+    const WarpGrid placeholder{2, 2, std::vector<glm::dvec2>(4, glm::dvec2(0.5)), {}};
+    const WarpGrid& g = w ? w->grid : placeholder;
+    const std::vector<glm::vec4> texels = grid_texels(g);
+    grid = std::make_unique<GlTexture>(g.columns, g.rows, texels.data(), GL_NEAREST);
+    alpha = map_texture(w ? w->alpha : BlendMap{}, 1.0f);
+    beta = map_texture(w ? w->beta : BlendMap{}, 0.0f);
     glCreateSamplers(1, &sampler);
     glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    make_targets(w.raster_width, w.raster_height);
+    make_targets(width, height);
 }
 
 void WarpPass::Gpu::make_targets(int width, int height) {
@@ -143,10 +135,17 @@ WarpPass::WarpPass(std::optional<ProjectorWarp> warp, int content_width, int con
     if (options_.supersample_filter < 1 || options_.supersample_filter > 8)
         throw std::invalid_argument("warp pass: supersample_filter " + std::to_string(options_.supersample_filter) +
                                     " is outside 1..8");
-    if (!warp) options_.encode = WarpOptions::Encode::Srgb;
-    warp_ = warp ? std::move(*warp) : identity_projector_warp(content_width, content_height);
-    validate(warp_);
-    gpu_ = std::make_unique<Gpu>(warp_);
+    if (warp) {
+        validate(*warp);
+        width_ = warp->raster_width;
+        height_ = warp->raster_height;
+    } else {
+        options_.encode = WarpOptions::Encode::Srgb;
+        width_ = content_width;
+        height_ = content_height;
+    }
+    warp_ = std::move(warp);
+    gpu_ = std::make_unique<Gpu>(warp_ ? &*warp_ : nullptr, width_, height_);
 }
 
 WarpPass::~WarpPass() = default;
@@ -154,7 +153,7 @@ WarpPass::~WarpPass() = default;
 void WarpPass::draw(unsigned content_texture, double exposure) {
     const GlProgram& p = gpu_->program;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->both_fbo);
-    glViewport(0, 0, warp_.raster_width, warp_.raster_height);
+    glViewport(0, 0, width_, height_);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     p.use();
@@ -167,10 +166,11 @@ void WarpPass::draw(unsigned content_texture, double exposure) {
     p.set("u_grid", 1);
     p.set("u_alpha", 2);
     p.set("u_beta", 3);
-    p.set("u_raster", glm::vec2(warp_.raster_width, warp_.raster_height));
+    p.set("u_raster", glm::vec2(width_, height_));
     p.set("u_content_size", glm::vec2(content_width_, content_height_));
     p.set("u_exposure", static_cast<float>(exposure));
-    p.set("u_gamma", static_cast<float>(warp_.projector_gamma));
+    p.set("u_gamma", static_cast<float>(warp_ ? warp_->projector_gamma : 2.2));
+    p.set("u_identity", warp_ ? 0 : 1);
     const bool srgb = options_.encode == WarpOptions::Encode::Srgb;
     p.set("u_encode", srgb ? shading::PROJECTOR_ENCODE_SRGB : shading::PROJECTOR_ENCODE_GAMMA);
     p.set("u_max_taps", options_.supersample_filter);
@@ -183,20 +183,19 @@ void WarpPass::draw(unsigned content_texture, double exposure) {
 
 unsigned WarpPass::linear_framebuffer() const { return gpu_->linear_fbo; }
 unsigned WarpPass::encoded_framebuffer() const { return gpu_->encoded_fbo; }
-int WarpPass::width() const { return warp_.raster_width; }
-int WarpPass::height() const { return warp_.raster_height; }
-const ProjectorWarp& WarpPass::warp() const { return warp_; }
+int WarpPass::width() const { return width_; }
+int WarpPass::height() const { return height_; }
 
 Image WarpPass::read_linear() const {
     Image img;
-    img.width = warp_.raster_width;
-    img.height = warp_.raster_height;
+    img.width = width_;
+    img.height = height_;
     img.rgba = read_rows<float>(gpu_->linear_fbo, img.width, img.height, GL_FLOAT);
     return img;
 }
 
 std::vector<uint8_t> WarpPass::read_encoded() const {
-    return read_rows<uint8_t>(gpu_->encoded_fbo, warp_.raster_width, warp_.raster_height, GL_UNSIGNED_BYTE);
+    return read_rows<uint8_t>(gpu_->encoded_fbo, width_, height_, GL_UNSIGNED_BYTE);
 }
 
 }  // namespace cupola

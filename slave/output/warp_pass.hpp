@@ -13,9 +13,10 @@
 //    sub-texel weight on common GPUs: over a 32x32 grid on a 2048-texel channel that is a quarter
 //    of a content texel of error. The shader weights the four points in fp32 instead.
 //  - One cost for every grid size, from 2x2 (MPCDI geometry level 1) to per-pixel (level 2).
-//  - Between the outer grid centres and the raster's edge (half a cell in fill layout) the outer
-//    cell is extended linearly, so that a 2x2 grid gives an affine map over the whole raster; an
-//    identity calibration is exactly a 2x2 grid.
+//  - Between the outer grid centres and the raster's edge (half a cell in fill layout) the edge
+//    value holds, as in the CPU reference (common/calibration/reference_warp.hpp) and in readers
+//    that sample the warp as a clamped texture. No calibration (nullopt) skips the grid: the
+//    raster is the content, pixel for pixel.
 //  - A pixel is black when any of its four grid points is NaN (the rule a mesh that skips cells
 //    with a NaN corner follows), or when its (u, v) lies outside [0, 1] (no content there).
 //
@@ -68,21 +69,17 @@ public:
     unsigned encoded_framebuffer() const;
     int width() const;
     int height() const;
-    const ProjectorWarp& warp() const;  // the calibration drawn (the identity's when none was given)
 
     Image read_linear() const;                  // RGBA float, row 0 top
     std::vector<uint8_t> read_encoded() const;  // RGBA8, row 0 top
 
 private:
     struct Gpu;
-    ProjectorWarp warp_;
+    std::optional<ProjectorWarp> warp_;
+    int width_ = 0, height_ = 0;
     int content_width_ = 0, content_height_ = 0;
     WarpOptions options_;
     std::unique_ptr<Gpu> gpu_;
 };
-
-// The calibration WarpPass draws for nullopt: a 2x2 grid whose linear extension maps raster pixel
-// centre (x + 0.5, y + 0.5) (y from the top) to content (u, v) = ((x + 0.5) / w, 1 - (y + 0.5) / h).
-ProjectorWarp identity_projector_warp(int width, int height);
 
 }  // namespace cupola
