@@ -77,13 +77,12 @@ vec3 filtered_content(WarpPoint w) {
 void main() {
     vec2 p = vec2(gl_FragCoord.x, u_raster.y - gl_FragCoord.y);
     WarpPoint w = warp_lookup(p);
-    vec3 c = vec3(0.0);  // not shown: the projector's own black, not lifted
-    if (w.shown) {
-        vec2 t = p / u_raster;
-        float alpha = textureLod(u_alpha, t, 0.0).r;
-        float beta = textureLod(u_beta, t, 0.0).r;
-        c = projector_blend(filtered_content(w) * u_exposure, alpha, w.intensity, beta);
-    }
+    vec2 t = p / u_raster;
+    float alpha = textureLod(u_alpha, t, 0.0).r;
+    float beta = textureLod(u_beta, t, 0.0).r;
+    // Not shown: black content, still lifted to the projector's black level like every pixel.
+    vec3 content = w.shown ? filtered_content(w) * u_exposure : vec3(0.0);
+    vec3 c = projector_blend(content, alpha, w.intensity, beta);
     out_linear = vec4(c, 1.0);
     out_encoded = vec4(projector_encode(c, u_gamma, u_encode), 1.0);
 }

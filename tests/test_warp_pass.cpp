@@ -9,11 +9,16 @@
 #include <limits>
 #include <numbers>
 
+#include "calibration/bourke_mesh.hpp"
+#include "calibration/mpcdi_package.hpp"
+#include "calibration/mpcdi_writer.hpp"
+#include "calibration/reference_warp.hpp"
 #include "gl/egl_context.hpp"
 #include "gl/gl_texture.hpp"
 #include "image/frame_image.hpp"
 #include "output/warp_pass.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/test_support.hpp"
 
 using namespace cupola;
 namespace sh = cupola::shading;
@@ -158,6 +163,7 @@ TEST(WarpPass, NanPointsAndUvOutsideTheContentAreBlack) {
     ProjectorWarp warp =
         grid_warp(w, h, 5, 5, [&](double px, double py) { return glm::dvec2(-0.2 + 1.4 * px / w, 1.0 - py / h); });
     warp.grid.uv[2 * 5 + 2] = glm::dvec2(kNaN, kNaN);
+    warp.beta = BlendMap{1, 1, {0.05f}};  // black content is still lifted to the projector's black
     WarpPass pass(warp, 8, 8);
     pass.draw(content.texture->id(), 1.0);
     const Image lin = pass.read_linear();
@@ -170,10 +176,10 @@ TEST(WarpPass, NanPointsAndUvOutsideTheContentAreBlack) {
             const bool outside = u < 0.0 || u > 1.0;
             const float v = lin.pixel(x, y)[0];
             if (nan_cell || outside) {
-                ASSERT_EQ(v, 0.0f) << x << "," << y;
+                ASSERT_NEAR(v, 0.05f, 1e-6) << x << "," << y;
                 ++black;
             } else {
-                ASSERT_NEAR(v, 0.5f, 1e-5) << x << "," << y;
+                ASSERT_NEAR(v, 0.5f * 0.95f + 0.05f, 1e-5) << x << "," << y;
                 ++lit;
             }
         }
@@ -265,4 +271,190 @@ TEST(WarpPass, MalformedWarpIsNamedInTheError) {
     }
     warp = grid_warp(16, 16, 1, 3, [](double, double) { return glm::dvec2(0.5); });
     EXPECT_THROW(WarpPass(warp, 16, 16), std::invalid_argument);
+}
+
+// ---- cupola-warp on files written here, against the CPU reference warp -------------------------
+
+namespace {
+
+// A smooth frame in [0, 0.9] (no clipping, so the reference's unclipped blend applies), written as
+// an EXR; returned as the reference's LinearImage (row 0 the top).
+LinearImage write_test_frame(const std::string& dir, int w, int h, std::string* path) {
+    Image img{w, h, std::vector<float>(static_cast<size_t>(w) * h * 4)};
+    LinearImage lin{w, h, 3, std::vector<float>(static_cast<size_t>(w) * h * 3)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c) {
+                const float v = c == 3 ? 1.0f : 0.45f + 0.45f * std::sin(0.15f * x * (c + 1) + 0.1f * y);
+                img.pixel(x, y)[c] = v;
+                if (c < 3) lin.data[(static_cast<size_t>(y) * w + x) * 3 + c] = v;
+            }
+    *path = write_frame(dir, img, FrameMetadata{}, {"exr"}, 1.0).front();
+    return lin;
+}
+
+// A curved 9x7 warp over a 40x30 raster with alpha and beta maps: one region of a 2d package.
+ProjectorWarp test_region_warp() {
+    const int w = 40, h = 30;
+    ProjectorWarp warp = grid_warp(w, h, 9, 7, [&](double px, double py) {
+        const double x = px / w * 2.0 - 1.0, y = 1.0 - py / h * 2.0, r2 = x * x + y * y;
+        return glm::dvec2(0.5 + 0.4 * x * (1.0 - 0.2 * r2) + 0.03 * y, 0.5 + 0.4 * y * (1.0 - 0.1 * r2));
+    });
+    warp.grid.uv[3] = glm::dvec2(kNaN, kNaN);  // an unknown point
+    warp.alpha = BlendMap{10, 8, {}};
+    for (int k = 0; k < 80; ++k) warp.alpha.value.push_back(0.25f + 0.75f * float(k % 10) / 9.0f);
+    warp.beta = BlendMap{4, 4, std::vector<float>(16, 0.03f)};
+    warp.region_id = "proj1";
+    return warp;
+}
+
+std::string write_package(const std::string& file, const ProjectorWarp& warp, const MpcdiWriting& writing) {
+    MpcdiPackageOut package;
+    package.profile = "2d";
+    package.geometry_level = 2;
+    package.color_level = 2;
+    MpcdiRegionOut region;
+    region.id = warp.region_id;
+    region.warp = warp;
+    package.regions = {region};
+    write_mpcdi(file, package, writing);
+    return file;
+}
+
+std::pair<int, std::string> cupola_warp(const std::string& args) {
+    return test::run_shell(test::bin_path("cupola-warp") + " " + args + " 2>&1");
+}
+
+// Largest difference of the RGB channels of an RGBA image file against a reference (the shown
+// pixels and the black ones alike).
+double worst_difference(const Image& got, const LinearImage& want) {
+    EXPECT_EQ(got.width, want.width);
+    EXPECT_EQ(got.height, want.height);
+    if (got.width != want.width || got.height != want.height) return 1e9;
+    double worst = 0.0;
+    for (int y = 0; y < got.height; ++y)
+        for (int x = 0; x < got.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(double(got.pixel(x, y)[c]) -
+                                                 want.data[(static_cast<size_t>(y) * want.width + x) * 3 + c]));
+    return worst;
+}
+
+}  // namespace
+
+TEST(WarpTool, MpcdiRegionMatchesTheReferenceWarpInExrAndPng) {
+    const std::string dir = test::scratch_dir("WarpTool_mpcdi");
+    std::string frame;
+    const LinearImage content = write_test_frame(dir, 64, 48, &frame);
+    MpcdiWriting writing;
+    writing.gamma_embedded = 2.2;
+    const std::string package = write_package(dir + "/dome.mpcdi", test_region_warp(), writing);
+    const auto [rc, out] =
+        cupola_warp("--mpcdi " + package + " --region proj1 --filter 1 --in " + frame + " --out " + dir + "/proj1.exr");
+    ASSERT_EQ(rc, 0) << out;
+    // The reference reads the same package (alpha as quantized in its PNG) with the same rules.
+    const ProjectorWarp read_back = MpcdiPackage::open(package).read_region("proj1");
+    const LinearImage want = reference_warp(read_back, content);
+    EXPECT_LT(worst_difference(read_image(dir + "/proj1.exr"), want), 3e-3);
+
+    const auto [rc2, out2] = cupola_warp("--mpcdi " + package + " --filter 1 --in " + frame + " --out " + dir +
+                                         "/proj1.png");  // the only region: no --region needed
+    ASSERT_EQ(rc2, 0) << out2;
+    FrameMetadata meta;
+    const Image png = read_image(dir + "/proj1.png", &meta);  // decoded as sRGB: undo it to the codes
+    ASSERT_EQ(png.width, 40);
+    int off = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) {
+            const float lin = want.data[(static_cast<size_t>(y) * 40 + x) * 3];
+            const double code = std::pow(std::clamp(lin, 0.0f, 1.0f), 1.0 / read_back.projector_gamma) * 255.0;
+            const double got = linear_to_srgb(png.pixel(x, y)[0]) * 255.0;
+            off += std::abs(got - code) > 1.01;
+        }
+    EXPECT_EQ(off, 0) << "pixels whose code differs by more than 1 from pow(reference, 1/gamma)";
+}
+
+TEST(WarpTool, EveryReadingSwitchGivesTheSameProjectorImage) {
+    const std::string dir = test::scratch_dir("WarpTool_switches");
+    std::string frame;
+    write_test_frame(dir, 64, 48, &frame);
+    const ProjectorWarp warp = test_region_warp();
+    std::vector<float> first;
+    struct Variant {
+        std::string name, flags;
+        MpcdiReading layout;
+        PfmByteOrder order;
+    };
+    std::vector<Variant> variants = {{"default", "", {}, PfmByteOrder::little_endian}};
+    variants.push_back({"top-first", "--pfm-rows top-first", {}, PfmByteOrder::big_endian});
+    variants.back().layout.pfm_rows = PfmRows::top_first;
+    variants.push_back({"v-top", "--v-origin top", {}, PfmByteOrder::little_endian});
+    variants.back().layout.v_origin = VOrigin::top;
+    variants.push_back({"buffer", "--coordinates buffer", {}, PfmByteOrder::little_endian});
+    variants.back().layout.coordinates = WarpCoordinates::buffer;
+    for (const Variant& v : variants) {
+        MpcdiWriting writing;
+        writing.layout = v.layout;
+        writing.pfm_byte_order = v.order;
+        const std::string package = write_package(dir + "/" + v.name + ".mpcdi", warp, writing);
+        const std::string out_file = dir + "/" + v.name + ".exr";
+        const auto [rc, out] =
+            cupola_warp("--mpcdi " + package + " " + v.flags + " --in " + frame + " --out " + out_file);
+        ASSERT_EQ(rc, 0) << v.name << ": " << out;
+        const Image img = read_image(out_file);
+        if (first.empty()) {
+            first = img.rgba;
+            continue;
+        }
+        ASSERT_EQ(img.rgba.size(), first.size()) << v.name;
+        double worst = 0.0;
+        for (size_t i = 0; i < first.size(); ++i) worst = std::max(worst, double(std::abs(img.rgba[i] - first[i])));
+        EXPECT_LT(worst, 1e-4) << v.name;
+    }
+}
+
+TEST(WarpTool, BourkeMeshMatchesTheReferenceWarp) {
+    const std::string dir = test::scratch_dir("WarpTool_bourke");
+    std::string frame;
+    const LinearImage content = write_test_frame(dir, 64, 64, &frame);
+    // A 9x7 node mesh over a 4:3 screen (x in [-4/3, 4/3], y in [-1, 1] up), a mild barrel map,
+    // the intensity falling toward the right edge.
+    std::string text = "2\n9 7\n";
+    for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 9; ++i) {
+            const double x = (i / 8.0 * 2.0 - 1.0) * 4.0 / 3.0, y = j / 6.0 * 2.0 - 1.0;
+            const double r2 = x * x * 0.5 + y * y;
+            char line[128];
+            std::snprintf(line, sizeof line, "%.6f %.6f %.6f %.6f %.4f\n", x, y, 0.5 + 0.3 * x * (1 - 0.1 * r2),
+                          0.5 + 0.4 * y * (1 - 0.1 * r2), 1.0 - 0.4 * i / 8.0);
+            text += line;
+        }
+    test::write_text(dir + "/mirror.data", text);
+    const auto [rc, out] = cupola_warp("--bourke " + dir + "/mirror.data --raster 48x36 --filter 1 --in " + frame +
+                                       " --out " + dir + "/mirror.exr");
+    ASSERT_EQ(rc, 0) << out;
+    const LinearImage want = reference_warp(read_bourke_mesh(dir + "/mirror.data", 48, 36), content);
+    EXPECT_LT(worst_difference(read_image(dir + "/mirror.exr"), want), 3e-3);
+}
+
+TEST(WarpTool, BadInputsAreNamedAndRefused) {
+    const std::string dir = test::scratch_dir("WarpTool_bad");
+    std::string frame;
+    write_test_frame(dir, 16, 16, &frame);
+    test::write_text(dir + "/broken.mpcdi", "this is not a zip");
+    auto [rc, out] = cupola_warp("--mpcdi " + dir + "/broken.mpcdi --in " + frame + " --out " + dir + "/o.png");
+    EXPECT_NE(rc, 0);
+    EXPECT_NE(out.find("broken.mpcdi"), std::string::npos) << out;
+    test::write_text(dir + "/bad.data", "2\n3 3\n0 0 0.5 0.5 1\n");
+    std::tie(rc, out) =
+        cupola_warp("--bourke " + dir + "/bad.data --raster 16x16 --in " + frame + " --out " + dir + "/o.png");
+    EXPECT_NE(rc, 0);
+    EXPECT_NE(out.find("bad.data"), std::string::npos) << out;
+    std::tie(rc, out) =
+        cupola_warp("--bourke " + dir + "/bad.data --raster 16by16 --in " + frame + " --out " + dir + "/o.png");
+    EXPECT_EQ(rc, 2);
+    EXPECT_NE(out.find("--raster"), std::string::npos) << out;
+    std::tie(rc, out) = cupola_warp("--bourke " + dir + "/bad.data --raster 16x16 --in " + frame + " --out o.tif");
+    EXPECT_EQ(rc, 2);
+    EXPECT_NE(out.find("--out"), std::string::npos) << out;
 }

@@ -17,8 +17,9 @@
 //    value holds, as in the CPU reference (common/calibration/reference_warp.hpp) and in readers
 //    that sample the warp as a clamped texture. No calibration (nullopt) skips the grid: the
 //    raster is the content, pixel for pixel.
-//  - A pixel is black when any of its four grid points is NaN (the rule a mesh that skips cells
-//    with a NaN corner follows), or when its (u, v) lies outside [0, 1] (no content there).
+//  - A pixel shows black content when any of its four grid points is NaN (the rule a mesh that
+//    skips cells with a NaN corner follows), or when its (u, v) lies outside [0, 1] (no content
+//    there); the blend still lifts it to beta, as every pixel.
 //
 // Supersampling: when one projector pixel covers more than one content texel (a 2048^2 channel
 // onto a 1920x1200 raster), a single bilinear tap aliases (moire on fine detail). The shader takes
