@@ -33,7 +33,7 @@ void check_spec(const OIIO::ImageSpec& spec, const std::string& name, const Blen
         throw CalibrationError(name, "componentDepth",
                                "mpcdi.xml says " + std::to_string(expected.components) + " components, the PNG has " +
                                    std::to_string(spec.nchannels));
-    if (spec.width < 1 || spec.height < 1 || static_cast<int64_t>(spec.width) * spec.height > (int64_t(1) << 26))
+    if (spec.width < 1 || spec.height < 1 || static_cast<int64_t>(spec.width) * spec.height > (int64_t(1) << 25))
         throw CalibrationError(name, "size", "PNG size out of range");
 }
 
@@ -48,6 +48,8 @@ BlendMap decode_blend_map(const std::string& png_bytes, const std::string& name,
     if (!in) throw CalibrationError(name, "PNG", "no PNG reader: " + OIIO::geterror());
     OIIO::ImageSpec spec;
     OIIO::ImageSpec config;
+    void* proxy = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     if (!in->open("map.png", spec, config))
         throw CalibrationError(name, "PNG", "not a readable PNG: " + in->geterror());
     check_spec(spec, name, expected);

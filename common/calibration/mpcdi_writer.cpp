@@ -3,6 +3,7 @@
 #include <zip.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <pugixml.hpp>
@@ -37,7 +38,7 @@ void check_region(const std::string& file, const MpcdiRegionOut& r) {
         throw CalibrationError(file, where + " xSize", "the region's size must be positive");
 }
 
-// The warp grid as the file stores it: (u, v, error), NaN points (NaN, NaN, 1) as §2.5.1.1 says.
+// The warp grid as the file stores it: (u, v, error), NaN points (NaN, NaN, 1) as VESA MPCDI v2.0 (2015) says.
 PfmImage warp_pfm(const MpcdiRegionOut& r, const WarpFileFrame& frame) {
     const WarpGrid& g = r.warp.grid;
     PfmImage img{g.columns, g.rows, 3, std::vector<float>(g.uv.size() * 3)};
@@ -53,11 +54,11 @@ PfmImage warp_pfm(const MpcdiRegionOut& r, const WarpFileFrame& frame) {
     return img;
 }
 
+// The shortest text that reads back to exactly v.
 std::string number(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
 }
 
 void add_text(pugi::xml_node parent, const char* name, const std::string& text) {
