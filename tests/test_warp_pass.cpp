@@ -458,3 +458,52 @@ TEST(WarpTool, BadInputsAreNamedAndRefused) {
     EXPECT_EQ(rc, 2);
     EXPECT_NE(out.find("--out"), std::string::npos) << out;
 }
+
+// Against an independent reading: tools/mpcdi_reference.py reads a package after PyMPCDI's
+// conventions (numpy, its own PFM, XML and PNG decoding: first PFM row the top, region-local
+// (u, v), alpha = stored^gammaEmbedded, the CPU blend). cupola-warp with the switch that matches
+// PyMPCDI (--pfm-rows top-first) must give the same projector image on the GPU, for a region that
+// sits inside its buffer (so region-local and buffer-global coordinates differ); the default
+// reading of the same file must not.
+TEST(WarpTool, AgreesWithThePyMpcdiReading) {
+    // The Python with Debian's python3-numpy and python3-openimageio (scripts/setup.sh): the first
+    // python3 on PATH may be another installation.
+    std::string interpreter;
+    for (const std::string candidate : {"python3", "/usr/bin/python3"})
+        if (interpreter.empty() && test::run_shell(candidate + " -c 'import numpy, OpenImageIO' 2>&1").first == 0)
+            interpreter = candidate;
+    ASSERT_FALSE(interpreter.empty()) << "no python3 with numpy and OpenImageIO (scripts/setup.sh installs them)";
+    const std::string dir = test::scratch_dir("WarpTool_pympcdi");
+    std::string frame;
+    write_test_frame(dir, 64, 48, &frame);
+    MpcdiPackageOut package;
+    package.profile = "2d";
+    package.geometry_level = 2;
+    package.color_level = 2;
+    MpcdiRegionOut region{"proj1", 0.25, 0.1, 0.5, 0.6, test_region_warp()};
+    package.regions = {region};
+    MpcdiWriting writing;
+    writing.layout.pfm_rows = PfmRows::top_first;
+    writing.gamma_embedded = 2.2;
+    writing.map_bit_depth = 16;
+    write_mpcdi(dir + "/p.mpcdi", package, writing);
+    const auto [rc, out] =
+        test::run_shell(interpreter + " " + test::source_path("tools/mpcdi_reference.py") + " --mpcdi " + dir +
+                        "/p.mpcdi --region proj1 --in " + frame + " --out " + dir + "/python.exr 2>&1");
+    ASSERT_EQ(rc, 0) << out;
+    const Image python = read_image(dir + "/python.exr");
+    auto difference = [&](const std::string& flags, const std::string& name) {
+        const auto [rc2, out2] = cupola_warp("--mpcdi " + dir + "/p.mpcdi --region proj1 --filter 1 " + flags +
+                                             " --in " + frame + " --out " + dir + "/" + name);
+        EXPECT_EQ(rc2, 0) << out2;
+        const Image gpu = read_image(dir + "/" + name);
+        EXPECT_EQ(gpu.width, python.width);
+        EXPECT_EQ(gpu.height, python.height);
+        double worst = gpu.width == python.width && gpu.height == python.height ? 0.0 : 1e9;
+        for (size_t i = 0; worst < 1e9 && i < gpu.rgba.size(); ++i)
+            if (i % 4 != 3) worst = std::max(worst, double(std::abs(gpu.rgba[i] - python.rgba[i])));
+        return worst;
+    };
+    EXPECT_LT(difference("--pfm-rows top-first", "matched.exr"), 3e-3);
+    EXPECT_GT(difference("", "default.exr"), 0.05);
+}
