@@ -1,9 +1,10 @@
 // A projector's blend and colour (shared by GLSL and C++: common/shading/shared_shading.hpp).
 // Every value is linear light in [0, 1] of the projector's range unless it says encoded. The
 // rules are those of common/calibration/projector_warp.hpp:
-//   blend (VESA MPCDI v2.0 (2013) §2.5.1.2, with a Bourke mesh's per-point intensity):
+//   blend (VESA MPCDI v2.0 (2015)'s alpha and beta maps, with a Bourke mesh's per-point intensity):
 //     C_out = C * alpha * intensity * (1 - beta) + beta
-//   encode for the projector: value = C_out^(1 / gamma); decode: C = value^gamma (§2.5.1.2.4).
+//   encode for the projector: value = C_out^(1 / gamma); decode: C = value^gamma (the rule of
+//   VESA MPCDI v2.0 (2015) §2.5.1.2.4 for embedded gamma).
 
 const int PROJECTOR_ENCODE_SRGB = 0;   // IEC 61966-2-1 curve (a monitor, an uncalibrated output)
 const int PROJECTOR_ENCODE_GAMMA = 1;  // the projector's power law
