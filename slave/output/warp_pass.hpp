@@ -3,16 +3,18 @@
 // calibration (common/calibration/projector_warp.hpp), multiplies the blend, lifts the black level
 // and encodes with the projector's gamma (shaders/warp.frag, shaders/shared/projector_blend.glsl).
 //
-// How the warp is drawn: a per-pixel lookup, not a mesh. One full-screen triangle; each fragment
+// How the warp is drawn: a per-pixel lookup, not a mesh. One full-screen triangle
+// (shaders/fullscreen.vert); each fragment
 // finds its raster position, reads the four surrounding grid points (an RGBA32F texture holding
 // u, v and the intensity, texelFetch) and interpolates them bilinearly in fp32 in the shader.
 //  - The contract says the grid is interpolated bilinearly; a triangulated mesh interpolates
-//    linearly per triangle, which differs from it inside every cell of a curved grid (by up to a
-//    quarter of the cell's twist); the lookup is the contract's bilinear rule exactly.
+//    linearly per triangle, which differs from it inside every cell that is not a parallelogram;
+//    the lookup is the contract's bilinear rule exactly.
 //  - Hardware bilinear filtering of the grid texture would be cheaper but keeps only 8 bits of
 //    sub-texel weight on common GPUs: over a 32x32 grid on a 2048-texel channel that is a quarter
 //    of a content texel of error. The shader weights the four points in fp32 instead.
-//  - One cost for every grid size, from 2x2 (MPCDI geometry level 1) to per-pixel (level 2).
+//  - About one cost for every grid size, from 2x2 (MPCDI geometry level 1) to per-pixel (level
+//    2): 32x32 and per-pixel differ by ~15 % (BENCHMARKS.md, "Projector warp pass").
 //  - Between the outer grid centres and the raster's edge (half a cell in fill layout) the edge
 //    value holds, as in the CPU reference (common/calibration/reference_warp.hpp) and in readers
 //    that sample the warp as a clamped texture. No calibration (nullopt) skips the grid: the
@@ -29,9 +31,12 @@
 // tap, no filter). Where a pixel covers one texel or less (identity, magnification), n = 1. The
 // content's own texture state is left alone: the pass samples it through its own sampler object
 // (bilinear, clamped to the edge), so single-level, nearest-filtered render targets work as given.
+// Measured against the CPU area average of a one-texel checker: WarpPass.FootprintFilter... in
+// tests/test_warp_pass.cpp and benchmarks/warp_cost.cpp (BENCHMARKS.md).
 //
-// Blend maps: alpha and beta are R32F textures over the whole raster, sampled bilinearly at the
+// Blend maps: alpha and beta are float textures over the whole raster, sampled bilinearly at the
 // pixel centre (any size). The per-point intensity of a Bourke mesh is interpolated with u, v.
+// Content above the projector's white (1 after exposure) clips before the blend.
 #include <cstdint>
 #include <memory>
 #include <optional>
