@@ -6,14 +6,17 @@
 
 #include <algorithm>
 #include <csignal>
+#include <deque>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/cluster_config.hpp"
+#include "present_skew.hpp"
 #include "support/cluster_fixture.hpp"
 #include "support/loopback_run.hpp"
 #include "util/child_process.hpp"
@@ -210,4 +213,50 @@ TEST(SwapLock, KilledSlaveDelaysThePresentByAtMostTheChannelTimeout) {
         }
     }
     EXPECT_LT(logs.at(vch.id).size(), static_cast<size_t>(frames));
+}
+
+// The master's measurement from the reports alone (master/present_skew.hpp).
+TEST(SwapLock, SkewReleaseAndWaitComeFromTheReportsOfTheNextFrame) {
+    auto report = [](int ch, uint64_t frame, uint64_t ready_ns, std::optional<std::pair<uint64_t, uint64_t>> shown) {
+        FrameReport r;
+        r.channel = static_cast<uint16_t>(ch);
+        r.frame = frame;
+        PresentTiming t;
+        t.ready_ns = ready_ns;
+        if (shown) t = PresentTiming{ready_ns, true, shown->first, shown->second};
+        r.presentation = t;
+        return r;
+    };
+    // Frame 7: ready at 1.0, 1.5 and 3.0 ms; shown at 4.0, 4.5 and 6.0 ms (reported with frame 8).
+    const std::map<int, FrameReport> frame7 = {
+        {0, report(0, 7, 1000000, {})}, {1, report(1, 7, 1500000, {})}, {2, report(2, 7, 3000000, {})}};
+    const std::map<int, FrameReport> frame8 = {{0, report(0, 8, 9000000, {{7, 4000000}})},
+                                               {1, report(1, 8, 9000000, {{7, 4500000}})},
+                                               {2, report(2, 8, 9000000, {{7, 6000000}})}};
+    PresentSkew skew;
+    EXPECT_FALSE(skew.add(frame7, {})) << "nothing shown yet";
+    const auto fp = skew.add(frame8, frame7);
+    ASSERT_TRUE(fp);
+    EXPECT_EQ(fp->frame, 7u);
+    EXPECT_EQ(fp->channels, 3);
+    EXPECT_DOUBLE_EQ(fp->skew_ms, 2.0);
+    EXPECT_DOUBLE_EQ(fp->release_ms, 1.0);
+    EXPECT_DOUBLE_EQ(fp->wait_ms.at(0), 3.0);
+    EXPECT_DOUBLE_EQ(fp->wait_ms.at(2), 3.0);
+    // A channel that showed an older frame (it missed one) is left out of frame 7's figures, and
+    // a report without the block (an older slave) too.
+    std::map<int, FrameReport> mixed = frame8;
+    mixed[1] = report(1, 8, 9000000, {{5, 100}});
+    mixed[2].presentation.reset();
+    EXPECT_FALSE(skew.add(mixed, frame7)) << "one channel alone has no skew";
+    const nlohmann::json j = skew.to_json();
+    EXPECT_EQ(j.at("frames"), 1);
+    EXPECT_DOUBLE_EQ(j.at("skew_ms").at("median").get<double>(), 2.0);
+    EXPECT_DOUBLE_EQ(j.at("wait_ms").at("1").at("max").get<double>(), 3.0);
+    std::deque<double> samples;
+    for (int i = 1; i <= 200; ++i) samples.push_back(i);
+    const nlohmann::json s = percentile_summary(samples);
+    EXPECT_EQ(s.at("median"), 100.0);
+    EXPECT_EQ(s.at("p99"), 198.0);
+    EXPECT_EQ(s.at("max"), 200.0);
 }
