@@ -4,6 +4,8 @@
 //   * a channel the master counts as joined is a configured one, and live afterwards;
 //   * the reports a frame ends with are that frame's, each from the channel it is filed under;
 //   * the master's quit ends within MasterSession::kQuitLimit plus one round;
+//   * with the swap lock, the master's present names its current frame, only once the barrier let
+//     it go; a slave shows only the frame it rendered last, at most once, before rendering the next;
 //   * a slave sends only to session 0 or to the master session that welcomed it, renders a
 //     snapshot whose hash is that of its content, and within one master session renders frames in
 //     increasing order only; it leaves only with exit code 0 (quit) or 3 (idle).
@@ -71,6 +73,7 @@ struct SlaveProcess {
     bool exited = false;
     uint64_t rendered_master = 0;  // master session of the last render
     std::optional<uint64_t> rendered_frame;
+    bool shown = true;  // the last render was shown (nothing to show before the first)
 };
 
 class Cluster {
@@ -85,7 +88,9 @@ public:
 
     void restart_master() {
         master_peer_.emplace(kMasterSender, nonce());
-        master_.emplace(ids_, master_peer_->session, MasterTimings{});
+        MasterTimings timings;
+        timings.swap_lock = true;
+        master_.emplace(ids_, master_peer_->session, timings);
         last_welcome_.clear();
         quit_started_.reset();
     }
@@ -144,13 +149,14 @@ public:
     // An authentic message with a fuzz-chosen body from a process of the cluster (from_sel %
     // (n + 1) == n: the master), addressed to session 0 or (to_sel odd) to the receiver's.
     void forge(uint8_t type, uint8_t from_sel, uint8_t to_sel, uint16_t frame, std::vector<uint8_t> body) {
-        static constexpr PacketType from_master[] = {PacketType::Snapshot, PacketType::Quit, PacketType::Welcome};
+        static constexpr PacketType from_master[] = {PacketType::Snapshot, PacketType::Quit, PacketType::Welcome,
+                                                     PacketType::Present};
         static constexpr PacketType from_slave[] = {PacketType::Hello, PacketType::FrameDone, PacketType::QuitAck,
                                                     PacketType::Heartbeat};
         const size_t from = from_sel % (slaves_.size() + 1);
         if (from == slaves_.size()) {
             const uint64_t to = to_sel & 1 ? slaves_[(to_sel >> 1) % slaves_.size()].peer.session : 0;
-            send_from_master({from_master[type % 3], frame, std::move(body), to});
+            send_from_master({from_master[type % 4], frame, std::move(body), to});
         } else {
             const uint64_t to = to_sel & 1 ? master_peer_->session : 0;
             send_from_slave(from, {from_slave[type % 4], frame, std::move(body), to});
@@ -211,6 +217,11 @@ private:
     void master_acts(const MasterActions& a) {
         for (const MasterSend& s : a.sends) {
             if (s.type == PacketType::Welcome) check_welcome(s);
+            if (s.type == PacketType::Present) {
+                PROTOCOL_CHECK(master_->presented());
+                PROTOCOL_CHECK(s.frame == master_->frame());
+                PROTOCOL_CHECK(decode_present(s.payload).frame == s.frame);
+            }
             send_from_master(s);
         }
         for (int id : a.joined) {
@@ -233,7 +244,14 @@ private:
             PROTOCOL_CHECK(out.to_session == 0 || out.to_session == s.session.master_session());
             send_from_slave(i, out);
         }
+        if (a.present) {
+            PROTOCOL_CHECK(!s.shown && s.rendered_frame && a.present->frame == *s.rendered_frame);
+            s.shown = true;
+            s.session.presented(a.present->frame, 1);
+        }
         if (a.render) {
+            PROTOCOL_CHECK(s.shown);  // the frame held is shown before the next render
+            s.shown = false;
             PROTOCOL_CHECK(a.render->hash == snapshot_hash(encode_snapshot(a.render->snapshot)));
             if (s.rendered_frame && s.rendered_master == s.session.master_session())
                 PROTOCOL_CHECK(a.render->snapshot.frame > *s.rendered_frame);

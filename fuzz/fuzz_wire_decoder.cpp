@@ -7,7 +7,8 @@
 //              tampered with at fuzz-chosen byte positions and re-signed (the harness recomputes
 //              the HMAC over the bytes before the tag: no header offset is known here), all
 //              decoded and fed to one Reassembler;
-//   Payload    bytes -> decode_snapshot / decode_hello / decode_frame_report / decode_welcome.
+//   Payload    bytes -> decode_snapshot / decode_hello / decode_frame_report / decode_welcome /
+//              decode_present.
 //   Sessions   a script of authentic headers through the session guard (replay and restart rules).
 //   Protocol   a master and its slaves (MasterSession, SlaveSession) under a fuzz-chosen schedule of
 //              deliveries, losses, replays, forged bodies, restarts and time (fuzz_protocol.cpp).
@@ -127,6 +128,16 @@ void check_frame_report(const std::vector<uint8_t>& payload) {
     }
 }
 
+void check_present(const std::vector<uint8_t>& payload) {
+    PresentMessage m;
+    try {
+        m = decode_present(payload);
+    } catch (const WireError&) {
+        return;
+    }
+    FUZZ_CHECK(encode_present(m) == payload);
+}
+
 void check_welcome(const std::vector<uint8_t>& payload) {
     WelcomeMessage m;
     try {
@@ -192,6 +203,9 @@ void consume(const Message& m) {
             break;
         case PacketType::Welcome:
             check_welcome(m.payload);
+            break;
+        case PacketType::Present:
+            check_present(m.payload);
             break;
         default:
             break;
@@ -333,6 +347,9 @@ void run_payload(Reader& r) {
             break;
         case PayloadKind::Welcome:
             check_welcome(payload);
+            break;
+        case PayloadKind::Present:
+            check_present(payload);
             break;
     }
 }

@@ -65,8 +65,8 @@ constexpr uint8_t kOpCount = 3;
 enum class Edit : uint8_t { Set = 0, Xor = 1, Insert = 2, Erase = 3 };
 constexpr uint8_t kEditCount = 4;
 
-enum class PayloadKind : uint8_t { Snapshot = 0, Hello = 1, FrameReport = 2, Welcome = 3 };
-constexpr uint8_t kPayloadKindCount = 4;
+enum class PayloadKind : uint8_t { Snapshot = 0, Hello = 1, FrameReport = 2, Welcome = 3, Present = 4 };
+constexpr uint8_t kPayloadKindCount = 5;
 
 enum class ProtocolOp : uint8_t {
     Tick = 0,

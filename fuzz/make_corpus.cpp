@@ -68,6 +68,7 @@ FrameReport sample_report(size_t glare) {
     r.packets_rejected = 3;
     r.snapshots_missed = 1;
     r.snapshot_received_ns = 123456789;
+    r.presentation = PresentTiming{123457000, true, 4241, 123400000};
     for (size_t i = 0; i < glare; ++i) {
         GlareMeasurement g;
         g.body = static_cast<uint16_t>(i);
@@ -277,6 +278,17 @@ int main(int argc, char** argv) {
         w.bytes(encode_welcome({2, 1234}));
         save("payload-welcome", w);
     }
+    {
+        Writer w = start(Mode::Payload);
+        w.u8(static_cast<uint8_t>(PayloadKind::Present));
+        w.bytes(encode_present({4242}));
+        save("payload-present", w);
+    }
+    {
+        Writer w = start(Mode::Raw);
+        w.bytes(encode(PacketType::Present, kMasterSender, 4242, encode_present({4242}), 1400)[0]);
+        save("raw-present", w);
+    }
     // A slave's handshake with a master that restarts, then a replay of the old session.
     {
         Writer w = start(Mode::Sessions);
@@ -336,6 +348,31 @@ int main(int argc, char** argv) {
         op(ProtocolOp::Next);
         op(ProtocolOp::Tick), w.u16(2500);
         save("protocol-restarts", w);
+    }
+    // The swap lock: two channels, three frames; a present is lost (the next snapshot implies
+    // it), another repeated, and a forged present of a later frame.
+    {
+        Writer w = start(Mode::Protocol);
+        w.u8(1);  // two channels
+        auto op = [&](ProtocolOp o) { w.u8(static_cast<uint8_t>(o)); };
+        op(ProtocolOp::Tick), w.u16(0);
+        for (int i = 0; i < 6; ++i) op(ProtocolOp::Next);  // both handshakes
+        for (int f = 0; f < 3; ++f) {
+            op(ProtocolOp::Frame);
+            op(ProtocolOp::Next), op(ProtocolOp::Next);  // the snapshot at both: two reports
+            op(ProtocolOp::Next), op(ProtocolOp::Next);  // the reports: the present goes out
+            op(f == 1 ? ProtocolOp::Drop : ProtocolOp::Next);
+            op(ProtocolOp::Next);
+            op(ProtocolOp::Tick), w.u16(120);  // a resent present
+            op(ProtocolOp::Next), op(ProtocolOp::Next);
+        }
+        op(ProtocolOp::Forge), w.u8(3), w.u8(2), w.u8(0), w.u16(9), w.u16(8);
+        for (int b = 0; b < 8; ++b) w.u8(b == 0 ? 9 : 0);
+        op(ProtocolOp::Next), op(ProtocolOp::Next);
+        op(ProtocolOp::Quit);
+        for (int i = 0; i < 4; ++i) op(ProtocolOp::Next);
+        op(ProtocolOp::Tick), w.u16(400);
+        save("protocol-swap-lock", w);
     }
     std::printf("cupola-fuzz-wire-corpus: %d seeds written to %s\n", written, dir.c_str());
     return 0;

@@ -18,6 +18,8 @@ struct MasterCounters {
     uint64_t malformed_messages = 0;  // authentic, but the body did not decode
     uint64_t unknown_channel = 0;     // authentic, from a channel id not in the config
     uint64_t quit_acks = 0;
+    uint64_t presents_sent = 0;     // swap lock: one per frame, once the barrier is complete
+    uint64_t present_resends = 0;   // the same present again every resend interval until the next frame
     uint64_t control_commands = 0;  // lines from the control channel
     uint64_t control_errors = 0;    // of those: refused (named in the reply)
 
@@ -33,6 +35,8 @@ struct MasterCounters {
                 {"malformed_messages", malformed_messages},
                 {"unknown_channel", unknown_channel},
                 {"quit_acks", quit_acks},
+                {"presents_sent", presents_sent},
+                {"present_resends", present_resends},
                 {"control_commands", control_commands},
                 {"control_errors", control_errors}};
     }

@@ -13,6 +13,7 @@
 #include "input/input_latency.hpp"
 #include "input/usb_input.hpp"
 #include "master_counters.hpp"
+#include "present_skew.hpp"
 #include "session/master_session.hpp"
 #include "session/receive_until.hpp"
 #include "net/key_file.hpp"
@@ -193,6 +194,7 @@ nlohmann::json reports_json(const std::map<int, FrameReport>& reports, const std
         ch[std::to_string(id)] = {{"hash", rep.snapshot_hash},        {"render_ms", rep.render_ms},
                                   {"write_ms", rep.write_ms},         {"latency_ms", rep.snapshot_received_ns / 1e6},
                                   {"rejected", rep.packets_rejected}, {"missed", rep.snapshots_missed}};
+        if (rep.presentation) ch[std::to_string(id)]["ready_ns"] = rep.presentation->ready_ns;
         if (rep.snapshot_hash != hash) hashes_agree = false;
     }
     if (!hashes_agree) spdlog::error("master: frame {}: a channel reports another snapshot hash", frame);
@@ -217,13 +219,14 @@ struct MasterNode::Loop {
           ids(channel_ids(cluster)),
           protocol(ids, session,
                    {std::chrono::milliseconds(cluster.network.resend_interval_ms),
-                    std::chrono::milliseconds(cluster.network.channel_timeout_ms)}),
+                    std::chrono::milliseconds(cluster.network.channel_timeout_ms), cluster.network.swap_lock}),
           stats(n.options_.stats_file, "master"),
           director(cluster, n.scene_, n.show_),
           glare_sharing(cluster) {}
 
     bool stopped() const { return node.stop_requested_; }
     nlohmann::json stats_json() const;
+    nlohmann::json presentation_json() const;
     void perform(const MasterActions& a);
     void step_until(Clock::time_point deadline);
     void wait_for_channels();
@@ -252,7 +255,8 @@ struct MasterNode::Loop {
     StatsWriter stats;
     Director director;  // who drives camera and clock (show or presenter)
     GlareSharing glare_sharing;
-    std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility
+    std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility and the present skew
+    PresentSkew present_skew;
     uint64_t current_frame = 0;
     uint64_t start_frame = 0;
     uint64_t frames_done = 0;
@@ -266,8 +270,16 @@ nlohmann::json MasterNode::Loop::stats_json() const {
                           {"frame", current_frame},
                           {"live", protocol.barrier().live_count()},
                           {"master", protocol.counters().to_json()},
+                          {"presentation", presentation_json()},
                           {"usb", usb ? usb->counters().to_json() : nlohmann::json(nullptr)},
                           {"wire", wire.counters().to_json()}};
+}
+
+// The swap lock's measurement (present_skew.hpp) for --stats and the end event.
+nlohmann::json MasterNode::Loop::presentation_json() const {
+    nlohmann::json j = present_skew.to_json();
+    j["swap_lock"] = cluster.network.swap_lock;
+    return j;
 }
 
 void MasterNode::Loop::perform(const MasterActions& a) {
@@ -343,6 +355,7 @@ bool MasterNode::Loop::frame(uint64_t f) {
     const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     nlohmann::json fe = frame_event(snap, hash, f, frame_ms, input_ms);
     fe["channels"] = reports_json(reports, hash, f);
+    if (auto shown = present_skew.add(reports, previous_reports)) fe["present"] = shown->to_json();
     events.write(fe);
     previous_reports = reports;
     ++frames_done;
@@ -391,6 +404,9 @@ void MasterNode::Loop::summary() {
     const double secs = std::chrono::duration<double>(Clock::now() - run_start).count();
     spdlog::info("master: {} frames in {:.2f} s ({:.2f} frames/s), {} with missing channels; wire: {}", frames_done,
                  secs, frames_done / std::max(secs, 1e-9), frames_incomplete, wire.counters().summary());
+    if (present_skew.frames())
+        spdlog::info("master: present skew over {} frames (swap lock {}): {}", present_skew.frames(),
+                     cluster.network.swap_lock ? "on" : "off", present_skew.to_json()["skew_ms"].dump());
     if (input_latency.count()) spdlog::info("master: device report -> snapshot sent: {}", input_latency.summary());
     if (node.glare_sources_)
         spdlog::info(

@@ -16,7 +16,7 @@ void on_signal(int) {
 
 int main(int argc, char** argv) {
     CLI::App app{"Cupola slave: renders one channel of the dome headlessly (EGL, no display server)"};
-    std::string config, channel, out, stats;
+    std::string config, channel, out, stats, present_log;
     int egl_device = -2, idle_timeout = 30;
     std::vector<std::string> formats;
     bool verbose = false, quiet = false;
@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
     app.add_option("--idle-timeout", idle_timeout, "exit when no snapshot arrives for this many seconds")
         ->check(CLI::Range(1, 86400));
     app.add_option("--stats", stats, "keep the anomaly counters in this JSON file (rewritten every second)");
+    app.add_option("--present-log", present_log,
+                   "write one JSON line per frame shown (frame, ready_ns, present_ns: CLOCK_MONOTONIC)");
     app.add_flag("-v,--verbose", verbose, "debug logging");
     app.add_flag("-q,--quiet", quiet, "warnings and errors only");
     CLI11_PARSE(app, argc, argv);
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
         opt.idle_timeout_s = idle_timeout;
         opt.formats = formats;
         opt.stats_file = stats;
+        opt.present_log = present_log;
         cupola::SlaveNode slave(std::move(cfg), id, opt);
         g_slave = &slave;
         std::signal(SIGINT, on_signal);

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <optional>
 
 #include "async_frame_writer.hpp"
@@ -41,7 +42,8 @@ struct LoggedEgl {
     EglContext context;
 };
 
-SlaveSessionConfig session_config(const ChannelConfig& channel, const SlaveOptions& options, const SceneConfig& scene) {
+SlaveSessionConfig session_config(const ChannelConfig& channel, const SlaveOptions& options, const SceneConfig& scene,
+                                  bool swap_lock) {
     SlaveSessionConfig c;
     c.channel = channel.id;
     c.process_id = static_cast<uint32_t>(::getpid());
@@ -49,8 +51,33 @@ SlaveSessionConfig session_config(const ChannelConfig& channel, const SlaveOptio
     c.scene_body_count = scene.bodies.size();
     c.scene_file = scene.file;
     c.log_name = "slave " + channel.name;
+    c.swap_lock = swap_lock;
     return c;
 }
+
+// --present-log: one JSON line per frame shown.
+class PresentLog {
+public:
+    explicit PresentLog(const std::string& path) {
+        if (path.empty()) return;
+        out_.open(path, std::ios::trunc);
+        if (!out_) throw std::runtime_error(path + ": cannot open the present log for writing");
+    }
+    void write(int channel, const PresentJob& job, uint64_t present_ns) {
+        if (!out_) return;
+        out_ << nlohmann::json{{"channel", channel},
+                               {"frame", job.frame},
+                               {"ready_ns", job.ready_ns},
+                               {"present_ns", present_ns},
+                               {"cause", present_cause_name(job.cause)}}
+                    .dump()
+             << '\n'
+             << std::flush;
+    }
+
+private:
+    std::ofstream out_;
+};
 
 }  // namespace
 
@@ -71,7 +98,8 @@ struct SlaveNode::Loop {
           writer(n.options_.out_dir, n.options_.formats),
           log_name("slave " + channel.name),
           stats(n.options_.stats_file, log_name),
-          protocol(session_config(channel, n.options_, scene), Clock::now()) {
+          protocol(session_config(channel, n.options_, scene, n.cluster_.network.swap_lock), Clock::now()),
+          present_log(n.options_.present_log) {
         spdlog::info("slave {}: ready to join {:.0f} ms after start (session {:016x})", channel.name,
                      std::chrono::duration<double, std::milli>(Clock::now() - started).count(), session);
     }
@@ -81,6 +109,7 @@ struct SlaveNode::Loop {
     void receive();
     std::optional<int> perform(SlaveActions a, uint64_t received_ns = 0);
     void render_and_report(const RenderJob& job, uint64_t received_ns);
+    void present(const PresentJob& job);
     int finish(int code);
 
     SlaveNode& node;
@@ -96,6 +125,7 @@ struct SlaveNode::Loop {
     const std::string log_name;
     StatsWriter stats;
     SlaveSession protocol;
+    PresentLog present_log;
 };
 
 nlohmann::json SlaveNode::Loop::stats_json() const {
@@ -129,6 +159,7 @@ void SlaveNode::Loop::receive() {
 
 std::optional<int> SlaveNode::Loop::perform(SlaveActions a, uint64_t received_ns) {
     for (const SlaveSend& s : a.sends) wire.send(s.type, s.frame, s.payload, {master}, s.to_session);
+    if (a.present) present(*a.present);
     if (a.render) render_and_report(*a.render, received_ns);
     if (a.exit_code == 0)
         spdlog::info("slave {}: master says quit after {} frames; stats {}", channel.name,
@@ -155,11 +186,21 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     rep.render_ms = std::chrono::duration<float, std::milli>(t1 - t0).count();
     rep.write_ms = static_cast<float>(wait_ms);
     rep.snapshot_received_ns = received_ns;
-    rep.glare = renderer.glare_measurements();  // this frame's queries, for the next snapshot
+    rep.glare = renderer.glare_measurements();         // this frame's queries, for the next snapshot
+    rep.presentation = PresentTiming{monotonic_ns()};  // ready to show
     const float render_ms = rep.render_ms, write_ms = rep.write_ms;
     perform(protocol.rendered(std::move(rep), wire.counters().total_rejected()));
     spdlog::debug("slave {}: frame {} rendered in {:.1f} ms, queued for writing after {:.1f} ms", channel.name,
                   snap.frame, render_ms, write_ms);
+}
+
+// Wait for present, then present: the session holds a reported frame until the master's present
+// (or what implies it) arrives through the loop's receive step, and hands it here; with the swap
+// lock off it hands it at once. The output swaps; its time goes into the next report.
+void SlaveNode::Loop::present(const PresentJob& job) {
+    const uint64_t present_ns = node.presenter_(job.frame);
+    protocol.presented(job.frame, present_ns);
+    present_log.write(channel.id, job, present_ns);
 }
 
 // On every way out: the frames already rendered reach the disk before the process ends.

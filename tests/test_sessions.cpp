@@ -480,3 +480,195 @@ TEST(Sessions, SlaveGivesUpWhenNoSnapshotArrives) {
     EXPECT_EQ(j.tick(t0 + 101ms).sends.size(), 1u);
     EXPECT_EQ(j.counters().hellos_sent, 2u);
 }
+
+// The swap lock (docs/SWAP_LOCK.md): "ready N" is the report, "present N" the master's answer.
+namespace {
+
+MasterSession make_locked_master(uint64_t session, std::vector<int> ids) {
+    return MasterSession(ids, session, {100ms, 2000ms, true});
+}
+
+SlaveSend render_ready(Channel& ch, const SlaveActions& a, uint64_t ready_ns) {
+    EXPECT_TRUE(a.render);
+    FrameReport r;
+    r.presentation = PresentTiming{ready_ns};
+    const SlaveActions done = ch.session.rendered(r, 0);
+    EXPECT_FALSE(done.present) << "a frame is held until its present";
+    EXPECT_EQ(done.sends.size(), 1u);
+    return done.sends.empty() ? SlaveSend{} : done.sends[0];
+}
+
+std::vector<MasterSend> presents(const MasterActions& a) {
+    std::vector<MasterSend> out;
+    for (const auto& s : a.sends)
+        if (s.type == PacketType::Present) out.push_back(s);
+    return out;
+}
+
+SlaveActions deliver_to(Channel& ch, Peer& mpeer, const MasterSend& s, Clock::time_point now) {
+    auto rm = deliver(mpeer, ch.peer, s);
+    EXPECT_TRUE(rm);
+    if (rm) ch.session.receive(*rm);
+    return ch.session.step(now);
+}
+
+}  // namespace
+
+TEST(Sessions, PresentGoesOutExactlyWhenEveryLiveChannelIsReady) {
+    Peer mpeer(kMasterSender, 0xA1);
+    MasterSession master = make_locked_master(0xA1, {0, 1});
+    Channel a(0, 0xB1), b(1, 0xB2);
+    join(a, master, mpeer, t0);
+    join(b, master, mpeer, t0);
+    const auto start = t0 + 1s;
+    EXPECT_TRUE(presents(master.start_frame(3, snapshot_payload(3), start, 0)).empty());
+    const SlaveSend ra = render_ready(a, snapshot_to(a, mpeer, 3, start, snapshot_payload(3)), 111);
+    const SlaveSend rb = render_ready(b, snapshot_to(b, mpeer, 3, start, snapshot_payload(3)), 222);
+    EXPECT_EQ(a.session.held_frame(), std::optional<uint64_t>(3));
+    EXPECT_TRUE(presents(master.on_message(*deliver(a.peer, mpeer, ra), start + 5ms)).empty())
+        << "channel 1 is not ready yet";
+    EXPECT_TRUE(presents(master.tick(start + 6ms)).empty());
+    const MasterActions all = master.on_message(*deliver(b.peer, mpeer, rb), start + 7ms);
+    const auto p = presents(all);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].frame, 3u);
+    EXPECT_EQ(decode_present(p[0].payload).frame, 3u);
+    EXPECT_EQ(p[0].to_session, 0u);
+    EXPECT_TRUE(master.frame_complete());
+    EXPECT_EQ(master.counters().presents_sent, 1u);
+    // Each slave shows its held frame on it; the next report says when.
+    const SlaveActions shown = deliver_to(a, mpeer, p[0], start + 8ms);
+    ASSERT_TRUE(shown.present);
+    EXPECT_EQ(shown.present->frame, 3u);
+    EXPECT_EQ(shown.present->ready_ns, 111u);
+    EXPECT_EQ(shown.present->cause, PresentCause::Present);
+    EXPECT_FALSE(a.session.held_frame());
+    a.session.presented(3, 5000);
+    const auto reports = master.end_frame();
+    ASSERT_EQ(reports.size(), 2u);
+    EXPECT_EQ(reports.at(1).presentation->ready_ns, 222u);
+    master.start_frame(4, snapshot_payload(4), start + 20ms, 0);
+    const FrameReport next =
+        decode_frame_report(render_ready(a, snapshot_to(a, mpeer, 4, start + 20ms, snapshot_payload(4)), 333).payload);
+    ASSERT_TRUE(next.presentation);
+    EXPECT_EQ(next.presentation->ready_ns, 333u);
+    EXPECT_TRUE(next.presentation->has_present);
+    EXPECT_EQ(next.presentation->presented_frame, 3u);
+    EXPECT_EQ(next.presentation->present_ns, 5000u);
+    EXPECT_EQ(a.session.counters().frames_presented, 1u);
+}
+
+TEST(Sessions, LostPresentIsResentAndRecoveredByTheNextSnapshot) {
+    Peer mpeer(kMasterSender, 0xA1);
+    MasterSession master = make_locked_master(0xA1, {0});
+    Channel a(0, 0xB1);
+    join(a, master, mpeer, t0);
+    const auto start = t0 + 1s;
+    master.start_frame(3, snapshot_payload(3), start, 0);
+    const auto p = presents(master.on_message(
+        *deliver(a.peer, mpeer, render_ready(a, snapshot_to(a, mpeer, 3, start, snapshot_payload(3)), 1)),
+        start + 5ms));
+    ASSERT_EQ(p.size(), 1u);  // ... and lost
+    master.end_frame();
+    // Resent every resend interval until the next frame starts.
+    EXPECT_EQ(master.next_wake(), start + 105ms);
+    EXPECT_TRUE(presents(master.tick(start + 104ms)).empty());
+    EXPECT_EQ(presents(master.tick(start + 105ms)).size(), 1u);
+    EXPECT_EQ(master.counters().present_resends, 1u);
+    // That one is lost too; the next snapshot implies it: shown first, then the render.
+    const MasterActions next = master.start_frame(4, snapshot_payload(4), start + 150ms, 0);
+    EXPECT_TRUE(presents(next).empty());
+    EXPECT_TRUE(presents(master.tick(start + 250ms)).empty()) << "no present of frame 3 once frame 4 started";
+    const SlaveActions s = snapshot_to(a, mpeer, 4, start + 150ms, snapshot_payload(4));
+    ASSERT_TRUE(s.present);
+    EXPECT_EQ(s.present->frame, 3u);
+    EXPECT_EQ(s.present->cause, PresentCause::Implied);
+    ASSERT_TRUE(s.render);
+    EXPECT_EQ(s.render->snapshot.frame, 4u);
+    EXPECT_EQ(a.session.counters().presents_implied, 1u);
+    // A later present implies the held frame too (the master went on without us).
+    render_ready(a, s, 2);
+    const SlaveActions later = deliver_to(a, mpeer, {PacketType::Present, 6, encode_present({6}), 0}, start + 300ms);
+    ASSERT_TRUE(later.present);
+    EXPECT_EQ(later.present->frame, 4u);
+    EXPECT_EQ(later.present->cause, PresentCause::Implied);
+    // So does the quit, before it is acknowledged.
+    render_ready(a, snapshot_to(a, mpeer, 7, start + 400ms, snapshot_payload(7)), 3);
+    const SlaveActions quit = deliver_to(a, mpeer, {PacketType::Quit, 8, {}, 0}, start + 500ms);
+    ASSERT_TRUE(quit.present);
+    EXPECT_EQ(quit.present->frame, 7u);
+    EXPECT_EQ(quit.sends.at(0).type, PacketType::QuitAck);
+}
+
+TEST(Sessions, LateRepeatedReplayedOrMalformedPresentIsIgnored) {
+    Peer mpeer(kMasterSender, 0xA1);
+    MasterSession master = make_locked_master(0xA1, {0});
+    Channel a(0, 0xB1);
+    join(a, master, mpeer, t0);
+    const auto start = t0 + 1s;
+    render_ready(a, snapshot_to(a, mpeer, 3, start, snapshot_payload(3)), 1);
+    // Before its frame is held, a present of an older frame shows nothing.
+    EXPECT_FALSE(deliver_to(a, mpeer, {PacketType::Present, 2, encode_present({2}), 0}, start + 1ms).present);
+    // One whose body names another frame than its header is malformed.
+    EXPECT_FALSE(deliver_to(a, mpeer, {PacketType::Present, 3, encode_present({4}), 0}, start + 2ms).present);
+    EXPECT_FALSE(deliver_to(a, mpeer, {PacketType::Present, 3, {1, 2}, 0}, start + 2ms).present);
+    EXPECT_EQ(a.session.counters().stale_presents, 3u);
+    EXPECT_EQ(a.session.held_frame(), std::optional<uint64_t>(3));
+    const uint32_t seq = mpeer.sequence;
+    ASSERT_TRUE(deliver_to(a, mpeer, {PacketType::Present, 3, encode_present({3}), 0}, start + 3ms).present);
+    a.session.presented(3, 10);
+    // The master's resend (a new datagram) and a replay of the one that showed it: nothing twice.
+    EXPECT_FALSE(deliver_to(a, mpeer, {PacketType::Present, 3, encode_present({3}), 0}, start + 100ms).present);
+    EXPECT_FALSE(deliver(mpeer, a.peer, PacketType::Present, 3, encode_present({3}), 0, seq))
+        << "the guard drops a replayed present";
+    EXPECT_EQ(a.session.counters().stale_presents, 4u);
+    EXPECT_EQ(a.session.counters().frames_presented, 1u);
+    // The resent snapshot of the frame shown repeats its report and shows nothing.
+    const SlaveActions again = snapshot_to(a, mpeer, 3, start + 200ms, snapshot_payload(3));
+    EXPECT_FALSE(again.present);
+    EXPECT_FALSE(again.render);
+    EXPECT_EQ(again.sends.size(), 1u);
+}
+
+TEST(Sessions, DroppedChannelReleasesThePresent) {
+    Peer mpeer(kMasterSender, 0xA1);
+    MasterSession master = make_locked_master(0xA1, {0, 1});
+    Channel a(0, 0xB1), b(1, 0xB2);
+    join(a, master, mpeer, t0);
+    join(b, master, mpeer, t0);
+    const auto start = t0 + 1s;
+    master.start_frame(3, snapshot_payload(3), start, 0);
+    const SlaveSend ra = render_ready(a, snapshot_to(a, mpeer, 3, start, snapshot_payload(3)), 1);
+    EXPECT_TRUE(presents(master.on_message(*deliver(a.peer, mpeer, ra), start + 5ms)).empty());
+    EXPECT_TRUE(presents(master.tick(start + 1999ms)).empty()) << "channel 1 is still expected";
+    const MasterActions drop = master.tick(start + 2000ms);
+    EXPECT_EQ(drop.dropped, std::vector<int>{1});
+    const auto p = presents(drop);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].frame, 3u);
+    EXPECT_TRUE(deliver_to(a, mpeer, p[0], start + 2001ms).present);
+}
+
+TEST(Sessions, WithoutTheSwapLockAFrameIsShownAtOnceAndNoPresentIsSent) {
+    Peer mpeer(kMasterSender, 0xA1);
+    MasterSession master = make_master(0xA1);
+    SlaveSessionConfig c = slave_config(0);
+    c.swap_lock = false;
+    Channel a(0, 0xB1);
+    a.session = SlaveSession(c, t0);
+    join(a, master, mpeer, t0);
+    const auto start = t0 + 1s;
+    master.start_frame(3, snapshot_payload(3), start, 0);
+    ASSERT_TRUE(snapshot_to(a, mpeer, 3, start, snapshot_payload(3)).render);
+    FrameReport r;
+    r.presentation = PresentTiming{77};
+    const SlaveActions done = a.session.rendered(r, 0);
+    ASSERT_TRUE(done.present);
+    EXPECT_EQ(done.present->cause, PresentCause::Unlocked);
+    EXPECT_EQ(done.present->ready_ns, 77u);
+    const MasterActions rep = master.on_message(*deliver(a.peer, mpeer, done.sends.at(0)), start + 5ms);
+    EXPECT_TRUE(master.frame_complete());
+    EXPECT_TRUE(presents(rep).empty());
+    EXPECT_TRUE(presents(master.tick(start + 500ms)).empty());
+    EXPECT_EQ(master.counters().presents_sent, 0u);
+}

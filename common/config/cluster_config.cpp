@@ -90,6 +90,7 @@ NetworkConfig read_network(const JsonReader& r) {
     n.resend_interval_ms = static_cast<int>(r.declared_integer("resend_interval_ms"));
     n.hello_wait_ms = static_cast<int>(r.declared_integer("hello_wait_ms"));
     n.strict_key_permissions = r.declared_boolean("strict_key_permissions");
+    n.swap_lock = r.declared_boolean("swap_lock");
     r.reject_unknown_keys();
     return n;
 }

@@ -30,6 +30,7 @@ struct NetworkConfig {
     int resend_interval_ms = 100;              // snapshot re-sent while the barrier waits
     int hello_wait_ms = 15000;                 // master waits this long for all channels at start
     bool strict_key_permissions = false;       // a key file open to every user: error, not warning
+    bool swap_lock = true;                     // two-phase frame: slaves show frame N on the master's present
 };
 
 struct DomeConfig {

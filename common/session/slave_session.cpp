@@ -76,8 +76,12 @@ void SlaveSession::handle(ReceivedMessage rm, Clock::time_point now, SlaveAction
     if (m.type == PacketType::Welcome) {
         if (!rm.opened && (!last_hello_ || now - *last_hello_ > kJoinHelloInterval))
             send_hello(master_session_, now, out);
+    } else if (m.type == PacketType::Present) {
+        present(m, out);
     } else if (m.type == PacketType::Quit) {
-        // Confirm, and keep confirming for a moment in case our confirmation is lost.
+        // Confirm, and keep confirming for a moment in case our confirmation is lost; the quit
+        // comes after the last frame's present, so it implies it.
+        release(PresentCause::Implied, out);
         quit_frame_ = m.frame;
         send_quit_ack(out);
         linger_until_ = now + kQuitLinger;
@@ -130,6 +134,9 @@ void SlaveSession::snapshot(const ReceivedMessage& rm, Clock::time_point now, Sl
         spdlog::warn("{}: frames {}..{} never reached this channel ({} missed so far)", config_.log_name,
                      *last_frame_ + 1, snap->frame - 1, counters_.missed_frames);
     }
+    // The master sends the next snapshot only after the held frame's present: it implies it, and no
+    // frame is rendered before the one held is shown.
+    release(PresentCause::Implied, out);
     job_ = Job{snap->frame, hash};
     out.render = RenderJob{std::move(*snap), hash};
 }
@@ -183,14 +190,68 @@ SlaveActions SlaveSession::rendered(FrameReport rep, uint64_t wire_rejected) {
     rep.snapshot_hash = job_->hash;
     rep.packets_rejected = wire_rejected + counters_.malformed_snapshots;
     rep.snapshots_missed = counters_.missed_frames;
+    PresentTiming timing = last_present_.value_or(PresentTiming{});
+    timing.ready_ns = rep.presentation ? rep.presentation->ready_ns : 0;
+    rep.presentation = timing;
     job_.reset();
     out.sends.push_back({PacketType::FrameDone, rep.frame, encode_frame_report(rep), master_session_});
+    held_ = PresentJob{rep.frame, timing.ready_ns, PresentCause::Present};
+    if (!config_.swap_lock) release(PresentCause::Unlocked, out);
     last_frame_ = rep.frame;
     last_report_ = std::move(rep);
     fresh_session_ = false;
     rendered_in_session_ = true;
     ++counters_.frames_rendered;
     return out;
+}
+
+// The master's present: shows the held frame when it names it or a later one (a later one: the
+// master went on, so ours is due too); anything else is late or repeated.
+void SlaveSession::present(const Message& m, SlaveActions& out) {
+    uint64_t frame = 0;
+    try {
+        frame = decode_present(m.payload).frame;
+        if (frame != m.frame) throw WireError("present frame differs from its packet header");
+    } catch (const WireError& e) {
+        ++counters_.stale_presents;
+        spdlog::warn("{}: malformed present dropped: {}", config_.log_name, e.what());
+        return;
+    }
+    if (!held_ || frame < held_->frame) {
+        ++counters_.stale_presents;
+        return;
+    }
+    release(frame == held_->frame ? PresentCause::Present : PresentCause::Implied, out);
+}
+
+void SlaveSession::release(PresentCause cause, SlaveActions& out) {
+    if (!held_) return;
+    out.present = *held_;
+    out.present->cause = cause;
+    held_.reset();
+    ++counters_.frames_presented;
+    if (cause == PresentCause::Implied) ++counters_.presents_implied;
+}
+
+void SlaveSession::presented(uint64_t frame, uint64_t present_ns) {
+    last_present_ = PresentTiming{0, true, frame, present_ns};
+}
+
+std::optional<uint64_t> SlaveSession::held_frame() const {
+    if (!held_) return std::nullopt;
+    return held_->frame;
+}
+
+const char* present_cause_name(PresentCause c) {
+    switch (c) {
+        case PresentCause::Present:
+            return "present";
+        case PresentCause::Implied:
+            return "implied";
+        case PresentCause::Unlocked:
+            return "unlocked";
+    }
+    return "?";
 }
 
 void SlaveSession::send_hello(uint64_t to, Clock::time_point now, SlaveActions& out) {

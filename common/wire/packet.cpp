@@ -22,6 +22,7 @@ bool known_type(uint8_t t) {
         case PacketType::Snapshot:
         case PacketType::Quit:
         case PacketType::Welcome:
+        case PacketType::Present:
         case PacketType::Hello:
         case PacketType::Heartbeat:
         case PacketType::FrameDone:
@@ -48,6 +49,8 @@ const char* packet_type_name(PacketType t) {
             return "welcome";
         case PacketType::QuitAck:
             return "quit-ack";
+        case PacketType::Present:
+            return "present";
     }
     return "unknown";
 }

@@ -39,6 +39,7 @@ enum class PacketType : uint8_t {
     Snapshot = 1,    // master -> slaves: Snapshot (possibly fragmented)
     Quit = 2,        // master -> slaves: stop after this frame
     Welcome = 3,     // master -> one slave (to_session): proves the master's session is live now
+    Present = 4,     // master -> slaves: PresentMessage, show frame N now (swap lock, docs/SWAP_LOCK.md)
     Hello = 16,      // slave -> master: channel joins or rejoins
     Heartbeat = 17,  // reserved: a valid type on the wire, but nothing sends it and a master logs it as
                      // unexpected (a live slave reports every frame; hellos cover one without frames)

@@ -68,7 +68,46 @@ std::vector<uint8_t> encode_frame_report(const FrameReport& rep) {
         w.f32(g.total_sr);
         for (float v : g.visible_sr) w.f32(v);
     }
+    if (rep.presentation) {
+        const PresentTiming& t = *rep.presentation;
+        w.u64(t.ready_ns);
+        w.u8(t.has_present ? 1 : 0);
+        w.u64(t.presented_frame);
+        w.u64(t.present_ns);
+    }
     return out;
+}
+
+namespace {
+
+PresentTiming read_present_timing(ByteReader& r) {
+    PresentTiming t;
+    t.ready_ns = r.u64("report.ready_ns");
+    const uint8_t has = r.u8("report.has_present");
+    if (has > 1) throw WireError("report.has_present must be 0 or 1");
+    t.has_present = has == 1;
+    t.presented_frame = r.u64("report.presented_frame");
+    t.present_ns = r.u64("report.present_ns");
+    if (!t.has_present && (t.presented_frame != 0 || t.present_ns != 0))
+        throw WireError("report.presented_frame and present_ns must be 0 without a present");
+    return t;
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_present(const PresentMessage& m) {
+    std::vector<uint8_t> out;
+    ByteWriter w(out);
+    w.u64(m.frame);
+    return out;
+}
+
+PresentMessage decode_present(const std::vector<uint8_t>& p) {
+    ByteReader r(p.data(), p.size());
+    PresentMessage m;
+    m.frame = r.u64("present.frame");
+    if (r.remaining()) throw WireError("unexpected bytes after present");
+    return m;
 }
 
 FrameReport decode_frame_report(const std::vector<uint8_t>& p) {
@@ -104,6 +143,7 @@ FrameReport decode_frame_report(const std::vector<uint8_t>& p) {
         if (g.visible_total_sr() > g.total_sr * 1.0001f + 1e-12f)
             throw WireError("report.glare visible solid angle exceeds the total");
     }
+    if (r.remaining()) rep.presentation = read_present_timing(r);
     if (r.remaining()) throw WireError("unexpected bytes after frame report");
     return rep;
 }

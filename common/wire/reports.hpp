@@ -2,6 +2,7 @@
 // Control message bodies: slave -> master (hello, quit-ack, frame reports) and the
 // master's welcome.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,23 @@ struct GlareMeasurement {
     }
 };
 
-// "frame N rendered" with per-channel measurements.
+// master -> slaves (swap lock): every live channel is ready for `frame`, or the rest timed out;
+// show it. The header's frame must be the same.
+struct PresentMessage {
+    uint64_t frame = 0;
+};
+
+// A report's presentation block (docs/SWAP_LOCK.md): when this frame was ready to show, and when
+// the channel last showed a frame (normally the previous one), both CLOCK_MONOTONIC ns.
+struct PresentTiming {
+    uint64_t ready_ns = 0;         // this report's frame rendered (and warped): ready to show
+    bool has_present = false;      // a frame was shown since the channel started...
+    uint64_t presented_frame = 0;  // ...this one,
+    uint64_t present_ns = 0;       // just after its swap
+    bool operator==(const PresentTiming&) const = default;
+};
+
+// "frame N rendered" (with the swap lock: "ready N") with per-channel measurements.
 struct FrameReport {
     uint16_t channel = 0;
     uint64_t frame = 0;
@@ -51,6 +68,9 @@ struct FrameReport {
     uint64_t snapshots_missed = 0;
     uint64_t snapshot_received_ns = 0;    // CLOCK_MONOTONIC when the whole snapshot arrived (one-host latency)
     std::vector<GlareMeasurement> glare;  // this frame's (or, if the GPU was late, an earlier frame's) queries
+    // Appended after the glare block when present; a report without it (an older slave) still
+    // decodes, so the protocol version stays 2.
+    std::optional<PresentTiming> presentation;
 };
 
 std::vector<uint8_t> encode_hello(const HelloMessage& m);
@@ -59,5 +79,7 @@ std::vector<uint8_t> encode_welcome(const WelcomeMessage& m);
 WelcomeMessage decode_welcome(const std::vector<uint8_t>& payload);
 std::vector<uint8_t> encode_frame_report(const FrameReport& r);
 FrameReport decode_frame_report(const std::vector<uint8_t>& payload);
+std::vector<uint8_t> encode_present(const PresentMessage& m);
+PresentMessage decode_present(const std::vector<uint8_t>& payload);
 
 }  // namespace cupola

@@ -99,6 +99,7 @@ void MasterSession::report(const Message& m, Clock::time_point now, MasterAction
         out.joined.push_back(m.sender);
     }
     if (phase_ != MasterPhase::Frame) return;  // only the frame's own wait keeps reports
+    maybe_present(now, out);
     if (sent_ns_ && rep.snapshot_received_ns >= sent_ns_)
         rep.snapshot_received_ns -= sent_ns_;
     else
@@ -114,10 +115,12 @@ MasterActions MasterSession::start_frame(uint64_t frame, std::vector<uint8_t> pa
     payload_ = std::move(payload);
     sent_ns_ = sent_ns;
     reports_.clear();
+    presented_ = false;
     barrier_.start_frame(frame, now);
     out.sends.push_back({PacketType::Snapshot, frame_, payload_, 0});
     ++counters_.snapshots_sent;
     last_send_ = now;
+    maybe_present(now, out);  // no live channel: nothing to wait for
     return out;
 }
 
@@ -140,6 +143,10 @@ MasterActions MasterSession::tick(Clock::time_point now) {
         if (now >= round_end_) quit_round(now, out);
         return out;
     }
+    if (presented_ && now >= last_present_ + timings_.resend_interval) {
+        ++counters_.present_resends;
+        send_present(now, out);
+    }
     if (phase_ != MasterPhase::Frame) return out;
     for (int id : barrier_.expire(now)) {
         ++counters_.channel_drops;
@@ -148,14 +155,29 @@ MasterActions MasterSession::tick(Clock::time_point now) {
         out.events.push_back({{"event", "channel_dropped"}, {"channel", id}, {"frame", frame_}});
         out.dropped.push_back(id);
     }
+    maybe_present(now, out);
     if (!barrier_.complete() && now >= last_send_ + timings_.resend_interval) resend(now, out);
     return out;
 }
 
 MasterSession::Clock::time_point MasterSession::next_wake() const {
     if (phase_ == MasterPhase::Quitting) return round_end_;
-    if (phase_ != MasterPhase::Frame) return Clock::time_point::max();
-    return std::min(last_send_ + timings_.resend_interval, barrier_.next_deadline());
+    const auto present = presented_ ? last_present_ + timings_.resend_interval : Clock::time_point::max();
+    if (phase_ != MasterPhase::Frame) return present;
+    return std::min({last_send_ + timings_.resend_interval, barrier_.next_deadline(), present});
+}
+
+// Swap lock: the frame's present, once, as soon as no live channel is still expected to report.
+void MasterSession::maybe_present(Clock::time_point now, MasterActions& out) {
+    if (!timings_.swap_lock || presented_ || phase_ != MasterPhase::Frame || !barrier_.complete()) return;
+    presented_ = true;
+    ++counters_.presents_sent;
+    send_present(now, out);
+}
+
+void MasterSession::send_present(Clock::time_point now, MasterActions& out) {
+    out.sends.push_back({PacketType::Present, frame_, encode_present({frame_}), 0});
+    last_present_ = now;
 }
 
 // Tell the slaves to quit, again every round until every live channel confirmed (for a limited
@@ -163,6 +185,7 @@ MasterSession::Clock::time_point MasterSession::next_wake() const {
 MasterActions MasterSession::start_quit(uint64_t frame, Clock::time_point now) {
     MasterActions out;
     phase_ = MasterPhase::Quitting;
+    presented_ = false;  // the quit implies the last present
     frame_ = frame;
     quit_until_ = now + kQuitLimit;
     quit_round(now, out);

@@ -9,6 +9,10 @@
 //   frame     the snapshot goes out, and again every resend interval while the barrier
 //             (frame_barrier.hpp) waits; a channel silent for the channel timeout is dropped, one
 //             that (re)joins is sent the snapshot at once; reports are kept for the frame;
+//   present   with the swap lock (docs/SWAP_LOCK.md): as soon as the barrier is complete (every
+//             live channel reported "ready N", or the rest were dropped) the present N goes out,
+//             and again every resend interval until the next frame starts (its snapshot, or the
+//             quit, implies the present at the slaves);
 //   between   after the barrier: reports and joins still count, a joined channel gets the snapshot;
 //   quitting  a quit every 50 ms until every live channel acknowledged, for at most 2 s.
 #include <chrono>
@@ -40,6 +44,7 @@ struct MasterActions {
 struct MasterTimings {
     std::chrono::milliseconds resend_interval{100};
     std::chrono::milliseconds channel_timeout{2000};
+    bool swap_lock = false;  // send a present once the barrier is complete (network.swap_lock)
 };
 
 enum class MasterPhase { Joining, Frame, Between, Quitting, Done };
@@ -67,6 +72,8 @@ public:
     MasterActions tick(Clock::time_point now);
     // When tick() next has something to do (Clock::time_point::max(): nothing).
     Clock::time_point next_wake() const;
+    // The present of the current frame went out (swap lock).
+    bool presented() const { return presented_; }
 
     MasterPhase phase() const { return phase_; }
     bool all_live() const { return barrier_.live_count() == static_cast<int>(ids_.size()); }
@@ -89,6 +96,8 @@ private:
     void joined(int channel, MasterActions& out);
     void resend(Clock::time_point now, MasterActions& out);
     void quit_round(Clock::time_point now, MasterActions& out);
+    void maybe_present(Clock::time_point now, MasterActions& out);
+    void send_present(Clock::time_point now, MasterActions& out);
 
     std::vector<int> ids_;
     uint64_t session_;
@@ -100,6 +109,8 @@ private:
     std::vector<uint8_t> payload_;  // the current frame's snapshot
     uint64_t sent_ns_ = 0;          // while in a frame
     Clock::time_point last_send_{};
+    bool presented_ = false;  // the current frame's present went out (swap lock)
+    Clock::time_point last_present_{};
     std::map<int, FrameReport> reports_;
     std::map<int, Clock::time_point> last_welcome_;
     std::map<int, HelloMessage> hellos_;  // the last verified hello of each channel's process
