@@ -5,7 +5,7 @@
 namespace cupola {
 
 void KmsSink::take(const ProjectorFrame& frame) {
-    blit_to_default_framebuffer(frame.encoded_target(), display_.width(), display_.height());
+    blit_to_default_framebuffer(frame, display_.width(), display_.height());
 }
 
 // The page flip itself waits for the vertical blank: no swap interval is involved.

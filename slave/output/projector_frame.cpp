@@ -16,9 +16,11 @@ Image ProjectorFrame::read_linear() const {
 
 EncodedImage ProjectorFrame::read_encoded() const {
     ++read_backs_;
-    return warp().read_encoded();
+    EncodedImage img;
+    img.width = warp().width();
+    img.height = warp().height();
+    img.rgba = warp().read_encoded();
+    return img;
 }
-
-const EncodedTarget& ProjectorFrame::encoded_target() const { return warp().encoded_framebuffer(); }
 
 }  // namespace cupola

@@ -28,8 +28,11 @@ public:
     Image read_linear() const;
     // The projector frame encoded for the projector (the bytes live sinks show), row 0 at the top.
     EncodedImage read_encoded() const;
-    // What live sinks blit to their surface (GL row 0 at the bottom); warped() only.
-    const EncodedTarget& encoded_target() const;
+    // What live sinks blit to their surface: the warp pass's encoded RGBA8 framebuffer (GL row 0
+    // at the bottom) and its size; warped() only.
+    unsigned encoded_framebuffer() const { return warp().encoded_framebuffer(); }
+    int width() const { return warp().width(); }
+    int height() const { return warp().height(); }
 
 private:
     const WarpPass& warp() const;

@@ -22,8 +22,8 @@ private:
     ScreenRect rect_;
 };
 
-// Draws `target` over the whole default framebuffer (width x height): a copy when the sizes
-// agree, else linear scaling. Shared by the window and KMS sinks.
-void blit_to_default_framebuffer(const EncodedTarget& target, int width, int height);
+// Draws the frame's encoded framebuffer over the whole default framebuffer (width x height): a
+// copy when the sizes agree, else linear scaling. Shared by the window and KMS sinks.
+void blit_to_default_framebuffer(const ProjectorFrame& frame, int width, int height);
 
 }  // namespace cupola
