@@ -21,10 +21,28 @@ AsyncFrameWriter::~AsyncFrameWriter() {
 }
 
 double AsyncFrameWriter::submit(Image image, FrameMetadata meta, double exposure) {
+    Job job;
+    job.image = std::move(image);
+    job.meta = std::move(meta);
+    job.exposure = exposure;
+    return queue(std::move(job));
+}
+
+double AsyncFrameWriter::submit_projected(Image linear, EncodedImage encoded, FrameMetadata meta, double exposure) {
+    Job job;
+    job.image = std::move(linear);
+    job.meta = std::move(meta);
+    job.exposure = exposure;
+    job.projected = true;
+    job.encoded = std::move(encoded);
+    return queue(std::move(job));
+}
+
+double AsyncFrameWriter::queue(Job job) {
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return queue_.size() < max_queued_; });
-    queue_.push_back(Job{std::move(image), std::move(meta), exposure});
+    queue_.push_back(std::move(job));
     lock.unlock();
     changed_.notify_all();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -45,6 +63,17 @@ uint64_t AsyncFrameWriter::failed() const {
     return failed_;
 }
 
+void AsyncFrameWriter::write(const Job& job) const {
+    if (!job.projected) {
+        write_frame(dir_, job.image, job.meta, formats_, job.exposure);
+        return;
+    }
+    for (const auto& f : formats_) {
+        if (f == "exr") write_frame(dir_, job.image, job.meta, {"exr"}, 1.0);
+        if (f == "png") write_encoded_png(dir_, job.encoded, job.meta, job.exposure);
+    }
+}
+
 void AsyncFrameWriter::run() {
     for (;;) {
         std::unique_lock lock(mutex_);
@@ -57,7 +86,7 @@ void AsyncFrameWriter::run() {
         changed_.notify_all();  // room in the queue
         bool ok = true;
         try {
-            write_frame(dir_, job.image, job.meta, formats_, job.exposure);
+            write(job);
         } catch (const std::exception& e) {
             ok = false;
             spdlog::error("frame {} of channel {} was not written: {}", job.meta.frame, job.meta.channel_name,

@@ -22,6 +22,10 @@ public:
 
     // Queues a frame; blocks while the queue is full. Returns the milliseconds spent waiting.
     double submit(Image image, FrameMetadata meta, double exposure);
+    // Queues a projector frame (slave/output/files_sink): the EXR from `linear` (already times the
+    // exposure, so recorded with exposure 1), the PNG holding the `encoded` bytes as they are.
+    // Either may be empty when its format is not written.
+    double submit_projected(Image linear, EncodedImage encoded, FrameMetadata meta, double exposure);
     // Waits until every queued frame is on disk.
     void flush();
 
@@ -32,8 +36,12 @@ private:
     struct Job {
         Image image;
         FrameMetadata meta;
-        double exposure;
+        double exposure = 1.0;
+        bool projected = false;
+        EncodedImage encoded;
     };
+    double queue(Job job);
+    void write(const Job& job) const;
     void run();
 
     std::string dir_;

@@ -28,8 +28,10 @@ public:
     PassInputs bind_for(const PassIo& io);
     // After a draw: a pass that read the colour and wrote colour leaves its output the colour so far.
     void drawn(const PassIo& io);
-    // The colour so far, row 0 at the top.
+    // The colour so far, row 0 at the top (glReadPixels).
     Image read() const;
+    // The texture holding the colour so far (GL row 0 at the bottom), for the output stage.
+    const GlTexture& color() const { return current_->color(0); }
 
     // Throws std::logic_error naming the passes when they cannot share these targets in this
     // order: a pass reading what it writes, or writing the G-buffer after a pass read the colour.

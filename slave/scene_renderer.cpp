@@ -106,6 +106,7 @@ struct SceneRenderer::Impl {
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere
     std::vector<GlareMeasurement> no_measurements;
+    uint64_t read_backs = 0;  // frames read back (read_back())
 };
 
 // The frame as every pass sees it: the channel's view, the light (the first of the scene's
@@ -181,6 +182,20 @@ void SceneRenderer::insert_pass(size_t position, std::unique_ptr<RenderPass> pas
 }
 
 Image SceneRenderer::render(const Snapshot& snap) {
+    draw(snap);
+    return read_back();
+}
+
+const GlTexture& SceneRenderer::color() const { return impl_->targets.color(); }
+
+Image SceneRenderer::read_back() {
+    ++impl_->read_backs;
+    return impl_->targets.read();
+}
+
+uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
+
+void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const FrameContext frame = m.frame_context(snap);
     m.targets.begin_frame();
@@ -194,7 +209,6 @@ Image SceneRenderer::render(const Snapshot& snap) {
     }
     glFinish();
     for (const auto& pass : m.passes) pass->frame_finished();  // this frame's queries are done by now: no wait
-    return m.targets.read();
 }
 
 }  // namespace cupola

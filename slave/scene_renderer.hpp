@@ -1,8 +1,10 @@
 #pragma once
 // Renders one channel's frustum slice of the dome for a snapshot, into offscreen RGBA32F
-// targets, and reads it back as a linear float image. Needs a current GL 4.5 context.
+// targets; the output stage (slave/output/) takes the final colour texture from there, and the
+// frame is read back as a linear float image only when asked. Needs a current GL 4.5 context.
 // The pipeline is one ordered list of render passes (slave/passes/render_pass.hpp), built in
 // the constructor (slave/scene_renderer.cpp) and run in order every frame.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,12 +26,22 @@ struct AtmosphereStats {
 };
 
 class RenderPass;
+class GlTexture;
 
 class SceneRenderer {
 public:
     SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene);
     ~SceneRenderer();
+    // draw() and read_back(): the frame as a linear float image, row 0 at the top.
     Image render(const Snapshot& snapshot);
+    // Renders the frame into the final colour target and waits for the GPU; reads nothing back.
+    void draw(const Snapshot& snapshot);
+    // The final colour of the last draw() (RGBA32F, linear, GL row 0 at the bottom).
+    const GlTexture& color() const;
+    // Reads the last draw()'s colour back (glReadPixels), row 0 at the top; counted.
+    Image read_back();
+    // How many times a frame was read back since construction.
+    uint64_t read_backs() const;
     AtmosphereStats atmosphere_stats() const;
     // The newest finished glare occlusion-query results (for the frame report): after render()
     // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <optional>
 
-#include "async_frame_writer.hpp"
-#include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
+#include "output/output_surface.hpp"
+#include "output/projector_output.hpp"
 #include "scene_renderer.hpp"
 #include "session/receive_until.hpp"
 #include "session/slave_session.hpp"
@@ -32,14 +32,17 @@ SlaveNode::SlaveNode(ClusterConfig cluster, int channel_id, SlaveOptions options
 
 namespace {
 
-// The EGL context, named in the log as soon as it is up.
-struct LoggedEgl {
-    LoggedEgl(int device, const std::string& channel_name) : context(device) {
+// The output surface and its EGL context (headless, an X11 window or a KMS output, from the
+// channel's sinks), named in the log as soon as it is up.
+struct LoggedSurface {
+    LoggedSurface(const ChannelConfig& channel, int device)
+        : surface(channel.output, device, channel.width, channel.height), context(surface.egl()) {
         const auto& i = context.info();
-        spdlog::info("slave {}: EGL {} (device {} of {}), {} / {}", channel_name, i.platform, i.device_index,
+        spdlog::info("slave {}: EGL {} (device {} of {}), {} / {}", channel.name, i.platform, i.device_index,
                      i.device_count, i.renderer, i.version);
     }
-    EglContext context;
+    OutputSurface surface;
+    const EglContext& context;
 };
 
 SlaveSessionConfig session_config(const ChannelConfig& channel, const SlaveOptions& options, const SceneConfig& scene,
@@ -90,12 +93,13 @@ struct SlaveNode::Loop {
           channel(n.channel_),
           key(load_key_file(n.cluster_.key_file, n.cluster_.network.strict_key_permissions)),
           scene(load_scene_config(n.cluster_.scene_file)),
-          gl(n.options_.egl_device, channel.name),
+          gl(channel, n.options_.egl_device),
           renderer(n.cluster_, channel, scene),
+          output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, std::nullopt,
+                 channel.width, channel.height),
           session(new_session_nonce()),
           wire(open_slave_endpoint(n.cluster_, channel, key, session)),
           master(master_report_address(n.cluster_)),
-          writer(n.options_.out_dir, n.options_.formats),
           log_name("slave " + channel.name),
           stats(n.options_.stats_file, log_name),
           protocol(session_config(channel, n.options_, scene, n.cluster_.network.swap_lock), Clock::now()),
@@ -105,6 +109,7 @@ struct SlaveNode::Loop {
     }
 
     nlohmann::json stats_json() const;
+    nlohmann::json output_json() const;
     int run();
     void receive();
     std::optional<int> perform(SlaveActions a, uint64_t received_ns = 0);
@@ -116,12 +121,12 @@ struct SlaveNode::Loop {
     const ChannelConfig& channel;
     const AuthKey key;
     const SceneConfig scene;
-    LoggedEgl gl;
+    LoggedSurface gl;
     SceneRenderer renderer;
+    ProjectorOutput output;
     const uint64_t session;
     WireEndpoint wire;
     const sockaddr_in master;
-    AsyncFrameWriter writer;
     const std::string log_name;
     StatsWriter stats;
     SlaveSession protocol;
@@ -134,7 +139,16 @@ nlohmann::json SlaveNode::Loop::stats_json() const {
                           {"session", fmt::format("{:016x}", session)},
                           {"master_session", fmt::format("{:016x}", wire.peer_session(kMasterSender))},
                           {"slave", protocol.counters().to_json()},
+                          {"output", output_json()},
                           {"wire", wire.counters().to_json()}};
+}
+
+// The output stage: its sinks, how often a frame was read back to the CPU and presented.
+nlohmann::json SlaveNode::Loop::output_json() const {
+    return nlohmann::json{{"sinks", output.sink_names()},
+                          {"warp_pass", output.warps()},
+                          {"read_backs", renderer.read_backs() + output.read_backs()},
+                          {"presents", output.presents()}};
 }
 
 int SlaveNode::Loop::run() {
@@ -170,7 +184,7 @@ std::optional<int> SlaveNode::Loop::perform(SlaveActions a, uint64_t received_ns
 void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_ns) {
     const Snapshot& snap = job.snapshot;
     const auto t0 = Clock::now();
-    Image image = renderer.render(snap);
+    renderer.draw(snap);
     const auto t1 = Clock::now();
     FrameMetadata meta;
     meta.channel_id = channel.id;
@@ -179,8 +193,10 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     meta.sim_time_s = snap.sim_time_s;
     meta.snapshot_hash = job.hash;
     meta.renderer = gl.context.info().renderer;
-    // Encoding overlaps the next frame's render; write_ms is the time spent waiting for room.
-    const double wait_ms = writer.submit(std::move(image), std::move(meta), snap.settings.exposure);
+    // The warp pass and every sink's take; encoding files overlaps the next frame's render, and
+    // write_ms is the time spent waiting for room in the files sink's queue.
+    const double wait_ms = output.take(renderer, meta, snap.settings.exposure);
+    output.present(snap.frame);  // live sinks swap
 
     FrameReport rep;
     rep.render_ms = std::chrono::duration<float, std::milli>(t1 - t0).count();
@@ -205,10 +221,10 @@ void SlaveNode::Loop::present(const PresentJob& job) {
 
 // On every way out: the frames already rendered reach the disk before the process ends.
 int SlaveNode::Loop::finish(int code) {
-    writer.flush();
+    const uint64_t failed = output.finish();
     stats.write_now(stats_json());
-    if (writer.failed() > 0) {
-        spdlog::error("slave {}: {} frame(s) could not be written", channel.name, writer.failed());
+    if (failed > 0) {
+        spdlog::error("slave {}: {} frame(s) could not be written", channel.name, failed);
         return code == 0 ? 4 : code;
     }
     return code;

@@ -107,8 +107,77 @@ FovDeg read_fov(const JsonReader& f) {
     return fov;
 }
 
-ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Transport transport) {
+// output.window / output.kms (or a channel's): the declared defaults for what is not given.
+WindowOutputConfig read_window_output(const JsonReader& w) {
+    WindowOutputConfig c;
+    c.display = w.string("display", "");
+    c.output_name = w.declared_string("output_name");
+    c.fullscreen = w.declared_boolean("fullscreen");
+    w.reject_unknown_keys();
+    return c;
+}
+
+// "WIDTHxHEIGHT" or "WIDTHxHEIGHT@HZ"; empty: the preferred mode.
+void read_kms_mode(const JsonReader& k, KmsOutputConfig& c) {
+    const std::string mode = k.declared_string("mode");
+    if (mode.empty()) return;
+    int w = 0, h = 0, used = 0;
+    double hz = 0.0;
+    const bool sized = std::sscanf(mode.c_str(), "%dx%d%n", &w, &h, &used) == 2;
+    const bool rated = sized && mode[used] == '@' && std::sscanf(mode.c_str() + used + 1, "%lf%n", &hz, &used) == 1;
+    const size_t end = rated ? mode.find('@') + 1 + used : used;
+    if (!sized || w <= 0 || h <= 0 || w > 16384 || h > 16384 || (mode[used] == '@' && !rated) || end != mode.size() ||
+        (rated && !(hz > 0.0 && hz < 1000.0)))
+        k.fail("mode", "\"" + mode + "\" is not WIDTHxHEIGHT or WIDTHxHEIGHT@HZ (e.g. \"1920x1080@60\")");
+    c.mode_width = w;
+    c.mode_height = h;
+    c.mode_refresh_hz = hz;
+}
+
+KmsOutputConfig read_kms_output(const JsonReader& k) {
+    KmsOutputConfig c;
+    c.device = k.declared_string("device");
+    c.connector = k.declared_string("connector");
+    read_kms_mode(k, c);
+    k.reject_unknown_keys();
+    return c;
+}
+
+// "sink": one name or a list of them.
+std::vector<std::string> read_sink_names(const JsonReader& r) {
+    const std::vector<std::string> allowed = {"files", "window", "kms"};
+    std::vector<std::string> names;
+    if (r.raw().at("sink").is_string())
+        names = {r.one_of("sink", allowed)};
+    else
+        names = r.strings("sink", {});
+    if (names.empty()) r.fail("sink", "name at least one of \"files\", \"window\", \"kms\"");
+    for (size_t i = 0; i < names.size(); ++i)
+        if (std::find(allowed.begin(), allowed.end(), names[i]) == allowed.end())
+            throw ConfigError(r.file(), r.field("sink") + "[" + std::to_string(i) + "]",
+                              "\"" + names[i] + "\" is not a sink (files, window, kms)");
+    return names;
+}
+
+// The sink keys of `r` (the output section, or a channel's) over `base`; then the checks that
+// need the whole: a window sink needs a display, and window and kms exclude each other.
+SinkConfig read_sinks(const JsonReader& r, const SinkConfig& base) {
+    SinkConfig c = base;
+    if (r.has("sink")) c.sinks = read_sink_names(r);
+    if (auto w = r.optional_child("window")) c.window = read_window_output(*w);
+    if (auto k = r.optional_child("kms")) c.kms = read_kms_output(*k);
+    if (c.has("window") && c.has("kms"))
+        r.fail("sink", "window and kms cannot run in one slave (one GL context, one platform)");
+    if (c.has("window") && c.window.display.empty())
+        throw ConfigError(r.file(), r.field("window") + ".display",
+                          "required when a sink is window (an X11 display name such as \":0\")");
+    return c;
+}
+
+ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Transport transport,
+                           const SinkConfig& cluster_sinks) {
     ChannelConfig c;
+    c.output = cluster_sinks;
     c.id = static_cast<int>(r.declared_integer("id"));
     c.name = r.string("name", "channel" + std::to_string(c.id));
     for (char ch : c.name)
@@ -128,6 +197,10 @@ ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Tr
     } else {
         c.unicast_address = r.string("unicast_address", "");
         if (!c.unicast_address.empty()) check_host_port(r, "unicast_address", c.unicast_address);
+    }
+    if (auto o = r.optional_child("output")) {
+        c.output = read_sinks(*o, cluster_sinks);
+        o->reject_unknown_keys();
     }
     r.reject_unknown_keys();
     return c;
@@ -178,6 +251,7 @@ OutputConfig read_output(const JsonReader& o, int& default_w, int& default_h) {
     out.domemaster_size = static_cast<int>(o.declared_integer("domemaster_size"));
     out.exposure = o.declared_number("exposure");
     if (auto a = o.optional_child("auto_exposure")) out.auto_exposure = read_auto_exposure(*a);
+    out.sink = read_sinks(o, SinkConfig{});
     default_w = static_cast<int>(o.declared_integer("width"));
     default_h = static_cast<int>(o.declared_integer("height"));
     o.reject_unknown_keys();
@@ -216,14 +290,15 @@ InputConfig read_input(const JsonReader& in, const std::string& directory) {
     return ic;
 }
 
-std::vector<ChannelConfig> read_channels(const JsonReader& r, int default_w, int default_h, Transport transport) {
+std::vector<ChannelConfig> read_channels(const JsonReader& r, int default_w, int default_h, Transport transport,
+                                         const SinkConfig& cluster_sinks) {
     auto channels = r.array("channels");
     if (channels.empty()) r.fail("channels", "at least one channel is required");
     std::set<int> ids;
     std::set<std::string> names;
     std::vector<ChannelConfig> out;
     for (auto& ch : channels) {
-        ChannelConfig c = read_channel(ch, default_w, default_h, transport);
+        ChannelConfig c = read_channel(ch, default_w, default_h, transport, cluster_sinks);
         if (!ids.insert(c.id).second) ch.fail("id", "channel id " + std::to_string(c.id) + " is used twice");
         if (!names.insert(c.name).second) ch.fail("name", "channel name \"" + c.name + "\" is used twice");
         out.push_back(c);
@@ -244,6 +319,10 @@ void check_coverage(const ClusterConfig& cfg, const std::string& file) {
 }
 
 }  // namespace
+
+bool SinkConfig::has(const std::string& sink) const {
+    return std::find(sinks.begin(), sinks.end(), sink) != sinks.end();
+}
 
 const std::vector<std::string>& button_action_names() {
     static const std::vector<std::string> names = {"next_mode", "toggle_pause",  "play",
@@ -271,7 +350,7 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
     int default_w = 0, default_h = 0;
     cfg.output = read_output(r.section("output"), default_w, default_h);
     cfg.input = read_input(r.section("input"), cfg.directory);
-    cfg.channels = read_channels(r, default_w, default_h, cfg.network.transport);
+    cfg.channels = read_channels(r, default_w, default_h, cfg.network.transport, cfg.output.sink);
     r.reject_unknown_keys();
     check_coverage(cfg, file_in);
     return cfg;

@@ -48,11 +48,35 @@ struct AutoExposureConfig {
     double max_exposure = 1e3;  // reached on a black (night, no-atmosphere) sky
 };
 
+// The live sinks' settings (slave/output/): the window sink on X11, the KMS sink on DRM/GBM.
+struct WindowOutputConfig {
+    std::string display;      // X11 display name, e.g. ":0"
+    std::string output_name;  // RandR output; empty: the whole screen
+    bool fullscreen = true;   // false: a window of the projector raster's size
+};
+
+struct KmsOutputConfig {
+    std::string device = "/dev/dri/card0";
+    std::string connector;  // e.g. "HDMI-A-1"; empty: the first connected one
+    int mode_width = 0;     // 0: the connector's preferred mode
+    int mode_height = 0;
+    double mode_refresh_hz = 0.0;  // 0: any refresh at that size (the highest)
+};
+
+// Where a channel's frames go: "files", "window" and/or "kms" (window and kms exclude each other).
+struct SinkConfig {
+    std::vector<std::string> sinks = {"files"};
+    WindowOutputConfig window;
+    KmsOutputConfig kms;
+    bool has(const std::string& sink) const;
+};
+
 struct OutputConfig {
     std::vector<std::string> formats = {"png"};  // "png" (8-bit sRGB) and/or "exr" (half float, linear)
     int domemaster_size = 1024;
     double exposure = 1.0;  // fixed exposure (scene units -> display), unless auto_exposure
     AutoExposureConfig auto_exposure;
+    SinkConfig sink;  // cluster-wide; a channel's own output section replaces parts of it
 };
 
 // Live navigation on the master (master/input, master/navigation): the USB devices and how they
@@ -84,6 +108,7 @@ struct ChannelConfig {
     int width = 512;
     int height = 512;
     std::string unicast_address;  // "host:port", used with the unicast transport
+    SinkConfig output;            // the cluster's output.sink/window/kms, with this channel's own keys
     ChannelFrustum frustum() const { return ChannelFrustum(orientation, fov, width, height); }
 };
 

@@ -93,10 +93,11 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
     spec.attribute("Software", "Cupola");
 }
 
+void write_pixels(const fs::path& final_path, const std::string& format, const OIIO::ImageSpec& spec,
+                  OIIO::TypeDesc data_type, const void* data);
+
 void write_one(const fs::path& final_path, const std::string& format, const Image& image, const FrameMetadata& meta,
                double exposure) {
-    const std::string path = final_path.string();
-    const std::string tmp = temp_path_for(final_path);
     const size_t n = static_cast<size_t>(image.width) * image.height * 4;
     const float ex = static_cast<float>(exposure);
 
@@ -135,7 +136,14 @@ void write_one(const fs::path& final_path, const std::string& format, const Imag
         put_metadata(spec, meta, exposure, true);
     }
     spec.alpha_channel = 3;
+    write_pixels(final_path, format, spec, data_type, data);
+}
 
+// Writes one image through a hidden temporary file, renamed to final_path once complete.
+void write_pixels(const fs::path& final_path, const std::string& format, const OIIO::ImageSpec& spec,
+                  OIIO::TypeDesc data_type, const void* data) {
+    const std::string path = final_path.string();
+    const std::string tmp = temp_path_for(final_path);
     auto out = OIIO::ImageOutput::create(format);
     if (!out) throw std::runtime_error("cannot write " + path + ": " + oiio_error(out.get()));
     if (!out->open(tmp, spec)) {
@@ -324,6 +332,28 @@ std::vector<std::string> write_frame(const std::string& dir, const Image& image,
         written.push_back(p.string());
     }
     return written;
+}
+
+std::string write_encoded_png(const std::string& dir, const EncodedImage& image, const FrameMetadata& meta,
+                              double exposure) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
+        throw std::runtime_error("cannot write frame " + std::to_string(meta.frame) + " to " + dir +
+                                 ": encoded image is " + std::to_string(image.width) + "x" +
+                                 std::to_string(image.height) + " with " + std::to_string(image.rgba.size()) +
+                                 " bytes");
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw std::runtime_error("cannot create directory " + dir + ": " +
+                                 (ec ? ec.message() : std::string("not a directory")));
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    spec.alpha_channel = 3;
+    put_metadata(spec, meta, exposure, true);
+    const fs::path p = fs::path(dir) / frame_file_name(meta.frame, "png");
+    write_pixels(p, "png", spec, OIIO::TypeDesc::UINT8, image.rgba.data());
+    return p.string();
 }
 
 Image read_image(const std::string& path, FrameMetadata* meta) { return read_impl(path, meta, false); }

@@ -22,6 +22,13 @@ struct Image {
     const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
 };
 
+// 8-bit RGBA already encoded for a display (what a projector is sent); row 0 is the TOP row.
+struct EncodedImage {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  // width*height*4
+};
+
 struct FrameMetadata {
     int channel_id = -1;  // -1 for a stitched domemaster
     std::string channel_name;
@@ -39,6 +46,11 @@ std::string frame_file_name(uint64_t frame, const std::string& extension);
 // Throws std::runtime_error naming the path on failure.
 std::vector<std::string> write_frame(const std::string& dir, const Image& image, const FrameMetadata& meta,
                                      const std::vector<std::string>& formats, double exposure);
+
+// Writes DIR/frame_NNNNNN.png holding exactly these bytes (no display transform), with the
+// metadata attributes; creates DIR. Returns the path; throws std::runtime_error naming it.
+std::string write_encoded_png(const std::string& dir, const EncodedImage& image, const FrameMetadata& meta,
+                              double exposure);
 
 // Reads an image written by write_frame (or any RGB/RGBA image) as linear float. PNG input is
 // decoded from sRGB and divided by the exposure recorded in the file (1 if absent).

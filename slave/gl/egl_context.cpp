@@ -73,6 +73,10 @@ EglProcs load_procs() {
     return p;
 }
 
+const EGLint kCoreContextAttrs[] = {
+    EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+
 // Initialises `dpy` and creates a current 4.5 core context on it; on failure returns the reason
 // (and leaves nothing initialised).
 std::string try_context(EGLDisplay dpy, EGLContext& out_ctx) {
@@ -94,10 +98,7 @@ std::string try_context(EGLDisplay dpy, EGLContext& out_ctx) {
         if (!eglChooseConfig(dpy, attrs, &config, 1, &n) || n < 1) return fail("no OpenGL-capable EGL config");
     }
     if (!has_extension(exts, "EGL_KHR_surfaceless_context")) return fail("display lacks EGL_KHR_surfaceless_context");
-    const EGLint ctx_attrs[] = {
-        EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, ctx_attrs);
+    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, kCoreContextAttrs);
     if (ctx == EGL_NO_CONTEXT) return fail("eglCreateContext(OpenGL 4.5 core) failed");
     if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
         eglDestroyContext(dpy, ctx);
@@ -105,6 +106,33 @@ std::string try_context(EGLDisplay dpy, EGLContext& out_ctx) {
     }
     out_ctx = ctx;
     return {};
+}
+
+// The window-capable OpenGL config whose native visual is `visual` (an X11 visual id or a GBM
+// format, as kmscube matches it), or none.
+EGLConfig window_config(EGLDisplay dpy, uint32_t visual) {
+    const EGLint attrs[] = {EGL_SURFACE_TYPE,
+                            EGL_WINDOW_BIT,
+                            EGL_RENDERABLE_TYPE,
+                            EGL_OPENGL_BIT,
+                            EGL_RED_SIZE,
+                            8,
+                            EGL_GREEN_SIZE,
+                            8,
+                            EGL_BLUE_SIZE,
+                            8,
+                            EGL_NONE};
+    EGLint n = 0;
+    if (!eglChooseConfig(dpy, attrs, nullptr, 0, &n) || n < 1) return nullptr;
+    std::vector<EGLConfig> configs(static_cast<size_t>(n));
+    eglChooseConfig(dpy, attrs, configs.data(), n, &n);
+    for (EGLint i = 0; i < n; ++i) {
+        EGLint id = 0;
+        if (eglGetConfigAttrib(dpy, configs[static_cast<size_t>(i)], EGL_NATIVE_VISUAL_ID, &id) &&
+            static_cast<uint32_t>(id) == visual)
+            return configs[static_cast<size_t>(i)];
+    }
+    return nullptr;
 }
 
 std::string gl_string(GLenum name) {
@@ -185,11 +213,66 @@ EglContext::EglContext(int device_index) {
                  info_.device_count, info_.vendor, info_.renderer, info_.version);
 }
 
-EglContext::~EglContext() {
+EglContext::EglContext(const EglWindowTarget& target) {
+    const EglProcs procs = load_procs();
+    const bool x11 = target.platform == EglPlatform::X11;
+    info_.platform = x11 ? "x11" : "gbm";
+    const char* client_exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!procs.get_platform_display ||
+        !has_extension(client_exts, x11 ? "EGL_KHR_platform_x11" : "EGL_KHR_platform_gbm"))
+        throw std::runtime_error("EGL: the " + info_.platform + " platform is not available (" +
+                                 (x11 ? "EGL_KHR_platform_x11" : "EGL_KHR_platform_gbm") + " missing)");
+    const auto create_surface = reinterpret_cast<PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC>(
+        eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT"));
+    EGLDisplay dpy =
+        procs.get_platform_display(x11 ? EGL_PLATFORM_X11_KHR : EGL_PLATFORM_GBM_KHR, target.native_display, nullptr);
+    EGLint major = 0, minor = 0;
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor))
+        throw std::runtime_error("EGL " + info_.platform + ": no display (" + egl_error_name(eglGetError()) + ")");
+    display_ = dpy;  // from here on the destructor cleans up
+    auto fail = [&](const std::string& what) {
+        const std::string msg = "EGL " + info_.platform + ": " + what + " (" + egl_error_name(eglGetError()) + ")";
+        release();
+        throw std::runtime_error(msg);
+    };
+    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
+    EGLConfig config = window_config(dpy, target.native_visual);
+    if (!config) fail("no OpenGL window config with native visual 0x" + fmt::format("{:x}", target.native_visual));
+    context_ = eglCreateContext(dpy, config, EGL_NO_CONTEXT, kCoreContextAttrs);
+    if (context_ == EGL_NO_CONTEXT) fail("eglCreateContext(OpenGL 4.5 core) failed");
+    if (create_surface) surface_ = create_surface(dpy, config, target.native_window, nullptr);
+    if (surface_ == EGL_NO_SURFACE) fail("eglCreatePlatformWindowSurfaceEXT failed");
+    if (!eglMakeCurrent(dpy, surface_, surface_, context_)) fail("eglMakeCurrent(window surface) failed");
+    info_.vendor = gl_string(GL_VENDOR);
+    info_.renderer = gl_string(GL_RENDERER);
+    info_.version = gl_string(GL_VERSION);
+    spdlog::info("EGL {} platform, window surface: {} / {} / {}", info_.platform, info_.vendor, info_.renderer,
+                 info_.version);
+}
+
+void EglContext::set_swap_interval(int interval) {
+    if (!surface_) throw std::logic_error("EGL: swap interval on a context without a window");
+    if (!eglSwapInterval(display_, interval))
+        throw std::runtime_error("EGL " + info_.platform + ": eglSwapInterval(" + std::to_string(interval) +
+                                 ") failed (" + egl_error_name(eglGetError()) + ")");
+}
+
+void EglContext::swap_buffers() {
+    if (!surface_) throw std::logic_error("EGL: swap on a context without a window");
+    if (!eglSwapBuffers(display_, surface_))
+        throw std::runtime_error("EGL " + info_.platform + ": eglSwapBuffers failed (" + egl_error_name(eglGetError()) +
+                                 ")");
+}
+
+EglContext::~EglContext() { release(); }
+
+void EglContext::release() {
     if (display_) {
         eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (surface_) eglDestroySurface(display_, surface_);
         if (context_) eglDestroyContext(display_, context_);
         eglTerminate(display_);
+        display_ = context_ = surface_ = nullptr;
     }
 }
 
