@@ -24,6 +24,7 @@ PACKAGES=(
   iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
   clang-format universal-ctags                 # source checks in ctest: formatting, function length
   clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
+  dpkg-dev file systemd                        # the .deb: cpack's dpkg-shlibdeps and file; its units and user checked offline (ctest packaging_*)
 )
 
 missing=()

@@ -11,12 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include "util/data_files.hpp"
+
 namespace cupola {
 
 namespace {
 
 constexpr double kTtMinusTai_s = 32.184;
-const char* const kDeltaTTable = CUPOLA_SOURCE_DIR "/data/time/delta_t.csv";
 
 // Morrison & Stephenson (2004) long-term parabola.
 double parabola_delta_t(double year) {
@@ -29,17 +30,18 @@ const std::vector<std::pair<double, double>>& delta_t_table() {
     static std::vector<std::pair<double, double>> rows;
     static std::once_flag once;
     std::call_once(once, [] {
-        std::ifstream in(kDeltaTTable);
-        if (!in) throw std::runtime_error(std::string(kDeltaTTable) + ": cannot open the Delta T table");
+        const std::string table = data_file("time/delta_t.csv");
+        std::ifstream in(table);
+        if (!in) throw std::runtime_error(table + ": cannot open the Delta T table");
         std::string line;
         while (std::getline(in, line)) {
             double y, dt;
             if (line.empty() || line[0] == '#' || std::sscanf(line.c_str(), "%lf,%lf", &y, &dt) != 2) continue;
             if (!rows.empty() && y <= rows.back().first)
-                throw std::runtime_error(std::string(kDeltaTTable) + ": years must increase (" + line + ")");
+                throw std::runtime_error(table + ": years must increase (" + line + ")");
             rows.emplace_back(y, dt);
         }
-        if (rows.size() < 2) throw std::runtime_error(std::string(kDeltaTTable) + ": no data rows");
+        if (rows.size() < 2) throw std::runtime_error(table + ": no data rows");
     });
     return rows;
 }
