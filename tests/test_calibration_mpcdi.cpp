@@ -419,3 +419,20 @@ TEST(CalibrationMpcdi, AgreesWithThePyMpcdiReading) {
                   0.05);
     }
 }
+
+// bitDepth and componentDepth may be left out (PyMPCDI reads them as optional): the PNG's own are used.
+TEST(CalibrationMpcdi, MapDepthsMayBeLeftOut) {
+    const std::string file = test::scratch_dir("calibration_mpcdi_depths") + "/d.mpcdi";
+    const MpcdiPackageOut p = sample_package();
+    MpcdiWriting w;
+    w.map_bit_depth = 16;
+    w.map_components = 3;
+    w.gamma_embedded = 2.2;
+    write_mpcdi(file, p, w);
+    std::string xml = read_entry(file, "mpcdi.xml");
+    for (const std::string tag : {"<bitDepth>16</bitDepth>", "<componentDepth>3</componentDepth>"})
+        for (size_t at = xml.find(tag); at != std::string::npos; at = xml.find(tag)) xml.erase(at, tag.size());
+    EXPECT_EQ(xml.find("bitDepth"), std::string::npos);
+    replace_entry(file, "mpcdi.xml", xml);
+    expect_same_warp(MpcdiPackage::open(file).read_region("proj0"), p.regions[0].warp);
+}

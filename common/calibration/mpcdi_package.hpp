@@ -15,8 +15,8 @@ namespace cupola {
 
 struct MpcdiFileRef {
     std::string path;                   // inside the package
-    int component_depth = 1;            // 1 | 3
-    int bit_depth = 8;                  // 8 | 16
+    int component_depth = 0;            // 1 | 3; 0: not given, whatever the PNG has
+    int bit_depth = 0;                  // 8 | 16; 0: not given, whatever the PNG holds
     double gamma_embedded = 1.0;        // alpha: linear = stored^gamma_embedded (§2.5.1.2.4)
     bool gamma_embedded_given = false;  // also the projector's gamma (PyMPCDI's targetGamma)
     bool given = false;
