@@ -20,6 +20,7 @@ PACKAGES=(
   iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
   clang-format universal-ctags                 # source checks in ctest: formatting, function length
   clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
+  libfreetype-dev fonts-dejavu-core            # alignment pattern: channel labels (FreeType, DejaVu Sans)
 )
 
 missing=()
