@@ -153,11 +153,14 @@ TEST(AlignmentPatternWire, EveryPatternRoundTripsInTheSettingsFlags) {
 
 namespace {
 
+// Scratch folders per test: ctest runs the cases in parallel processes.
+std::string test_name() { return ::testing::UnitTest::GetInstance()->current_test_info()->name(); }
+
 EglContext& context() {
     static EglContext* ctx = [] {
         unsetenv("DISPLAY");
         unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("AlignmentPattern_cache").c_str(), 1);
+        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("AlignmentPattern_cache_" + test_name()).c_str(), 1);
         return new EglContext(-1);
     }();
     return *ctx;
@@ -172,7 +175,7 @@ struct Cluster {
     ClusterConfig cluster;
     SceneConfig scene;
     Cluster() {
-        const std::string dir = test::scratch_dir("AlignmentPattern");
+        const std::string dir = test::scratch_dir("AlignmentPattern_" + test_name());
         test::write_text(dir + "/stars.csv", "ra_deg,dec_deg,vmag,bv,name\n10.0,10.0,5.0,0.6,Faint\n");
         test::write_text(dir + "/scene.json", R"({ "bodies": [
             { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 5.8e4 } ],

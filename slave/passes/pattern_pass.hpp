@@ -44,7 +44,7 @@ public:
     const std::string& label() const { return label_; }
     glm::vec4 label_box() const { return label_box_; }
     // The tint of directions another channel also covers (linear, after exposure).
-    static glm::vec3 overlap_tint() { return {0.0f, 0.12f, 0.3f}; }
+    static glm::vec3 overlap_tint() { return {0.0f, 0.05f, 0.12f}; }
 
 private:
     static std::vector<glm::vec4> label_texels(const TextRaster& text);
