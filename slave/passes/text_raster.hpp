@@ -1,8 +1,8 @@
 #pragma once
-// A line of text rasterized on the CPU with FreeType (The FreeType Project, "FreeType 2 Tutorial",
-// step 1 §5-6 and step 2 §1: FT_Set_Pixel_Sizes, FT_Load_Char with FT_LOAD_RENDER, the glyph
-// metrics in 26.6 fixed point): the glyphs' 8-bit coverage placed along one baseline. Done once
-// at start-up (the alignment pattern's channel label, slave/passes/pattern_pass.hpp).
+// A line of text rasterized on the CPU with FreeType (FreeType tutorial, steps 1 and 2:
+// FT_Set_Pixel_Sizes, FT_Load_Char with FT_LOAD_RENDER, the glyph metrics in 26.6 fixed point;
+// docs/REFERENCES.md): the glyphs' 8-bit coverage placed along one baseline. Done once at
+// start-up (the alignment pattern's channel label, slave/passes/pattern_pass.hpp).
 #include <string>
 #include <vector>
 
