@@ -40,7 +40,7 @@ Snapshot sample_snapshot(size_t bodies, size_t glare) {
         s.bodies.push_back(b);
     }
     s.settings.exposure = 2.5f;
-    s.settings.flags = 3;
+    s.settings.flags = with_alignment_pattern(3, AlignmentPattern::Grid);  // shadow mode and grid pattern
     s.settings.glare_phase = 1.25f;
     for (size_t i = 0; i < glare; ++i) {
         GlareSource g;

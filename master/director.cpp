@@ -183,8 +183,10 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     if (shadow_override_) out.settings.shadow_mode = shadow_override_;
     if (exposure_override_) out.settings.exposure = *exposure_override_;
     if (star_limit_override_) out.settings.star_magnitude_limit = star_limit_override_;
-    out.snapshot.settings.flags =
-        with_shadow_mode(out.snapshot.settings.flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
+    if (pattern_override_) out.settings.pattern = pattern_override_;
+    uint32_t& flags = out.snapshot.settings.flags;
+    flags = with_shadow_mode(flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
+    flags = with_alignment_pattern(flags, out.settings.pattern.value_or(AlignmentPattern::Off));
     last_frame_ = frame;
     return out;
 }
@@ -224,6 +226,8 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
         case ControlVerb::Set:
             apply_setting(cmd);
             return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
+        case ControlVerb::Pattern:
+            return apply_pattern(cmd, next);
         case ControlVerb::Status:
             return status(next).dump();
         case ControlVerb::Quit:
@@ -304,6 +308,26 @@ void Director::apply_setting(const ControlCommand& cmd) {
     }
 }
 
+AlignmentPattern Director::pattern_at(uint64_t frame) const {
+    if (pattern_override_) return *pattern_override_;
+    const ShowSettings shown = live_ ? live_settings_ : show_.settings_at(show_time_at(frame));
+    return shown.pattern.value_or(AlignmentPattern::Off);
+}
+
+std::string Director::apply_pattern(const ControlCommand& cmd, uint64_t next) {
+    if (cmd.pattern == "show") {
+        pattern_override_.reset();
+        return std::string("pattern show (") + alignment_pattern_name(pattern_at(next)) + " now) from frame " +
+               std::to_string(next);
+    }
+    try {
+        pattern_override_ = alignment_pattern_from_name(cmd.pattern);
+    } catch (const std::invalid_argument& e) {
+        throw ControlError(std::string("pattern: ") + e.what());
+    }
+    return "pattern " + cmd.pattern + " from frame " + std::to_string(next);
+}
+
 nlohmann::json Director::status(uint64_t next) const {
     const double t = sim_time_at(next);
     nlohmann::json j{{"frame", next},
@@ -315,7 +339,8 @@ nlohmann::json Director::status(uint64_t next) const {
                      {"utc", utc_or_note(t)},
                      {"rate", paused_ ? 0.0
                               : live_ ? rate_
-                                      : show_rate_at(show_time_at(next))}};
+                                      : show_rate_at(show_time_at(next))},
+                     {"pattern", alignment_pattern_name(pattern_at(next))}};
     if (live_) {
         const auto bodies = nav_bodies(scene_, states_at(t));
         j["navigation"] = {{"mode", nav_mode_name(nav_.mode())},

@@ -71,6 +71,8 @@ private:
     std::string apply_mode(const ControlCommand& cmd, uint64_t next);
     std::string apply_play(const ControlCommand& cmd, uint64_t next);
     void apply_setting(const ControlCommand& cmd);  // "set": the overrides of the show
+    std::string apply_pattern(const ControlCommand& cmd, uint64_t next);
+    AlignmentPattern pattern_at(uint64_t frame) const;  // the pattern frame() would give
     double show_rate_at(double show_time_s) const;
     void press_buttons(
         uint64_t frame,
@@ -99,6 +101,7 @@ private:
     std::optional<ShadowMode> shadow_override_;
     std::optional<std::optional<float>> exposure_override_;  // inner none: the cluster's exposure
     std::optional<float> star_limit_override_;
+    std::optional<AlignmentPattern> pattern_override_;  // "pattern": over the show's (none: the show's)
     InputShaper shaper_;
     NavigationModel nav_;
 };

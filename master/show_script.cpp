@@ -116,9 +116,10 @@ ShowEvent read_event(const JsonReader& e) {
     }
     if (e.has("star_magnitude_limit"))
         ev.star_magnitude_limit = static_cast<float>(e.declared_number("star_magnitude_limit", 0.0));
+    if (e.has("pattern")) ev.pattern = alignment_pattern_from_name(e.one_of("pattern", e.declared_choices("pattern")));
     e.reject_unknown_keys();
-    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit)
-        e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit");
+    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit && !ev.pattern)
+        e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit, pattern");
     return ev;
 }
 
@@ -225,8 +226,9 @@ Snapshot ShowScript::evaluate(double show_time_s, const SceneConfig& scene) cons
     s.camera_position_m = pa.position + (pb.position - pa.position) * smooth;
     s.camera_orientation = glm::normalize(glm::slerp(pa.orientation, pb.orientation, smooth));
     for (const auto& body : scene.bodies) s.bodies.push_back(body_state(body, t));
-    s.settings.flags =
-        with_shadow_mode(s.settings.flags, settings_at(show_time_s).shadow_mode.value_or(scene.shadows.mode));
+    const ShowSettings settings = settings_at(show_time_s);
+    s.settings.flags = with_shadow_mode(s.settings.flags, settings.shadow_mode.value_or(scene.shadows.mode));
+    s.settings.flags = with_alignment_pattern(s.settings.flags, settings.pattern.value_or(AlignmentPattern::Off));
     return s;
 }
 
@@ -241,6 +243,7 @@ ShowSettings ShowScript::settings_at(double show_time_s) const {
             if (ev.exposure) out.exposure = ev.exposure;
             if (ev.exposure_auto) out.exposure.reset();
             if (ev.star_magnitude_limit) out.star_magnitude_limit = ev.star_magnitude_limit;
+            if (ev.pattern) out.pattern = ev.pattern;
         }
     };
     for (const auto& k : keys_) {

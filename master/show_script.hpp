@@ -5,8 +5,8 @@
 // The file format, each field's default, range and meaning: configs/schema/show.schema.json
 // (docs/CONFIG.md is written from it; configs/shows/ has examples). In short: keyframes[] of
 // at_s, time_utc and a camera (anchor body, offset_m or a ground observer, look_at or
-// look_direction), with easings to the next key; events[] switch shadow mode, exposure and star
-// magnitude limit at a show time.
+// look_direction), with easings to the next key; events[] switch shadow mode, exposure, star
+// magnitude limit and the alignment pattern (docs/ALIGNMENT.md) at a show time.
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +51,7 @@ struct ShowEvent {
     std::optional<float> exposure;  // fixed exposure from here on
     bool exposure_auto = false;     // back to the cluster's own exposure
     std::optional<float> star_magnitude_limit;
+    std::optional<AlignmentPattern> pattern;  // the alignment pattern from here on (Off: the scene)
 };
 
 // The render settings a show asks for at a show time (events and keyframes up to then).
@@ -58,6 +59,7 @@ struct ShowSettings {
     std::optional<ShadowMode> shadow_mode;      // none: the scene's default
     std::optional<float> exposure;              // none: the cluster's (auto) exposure
     std::optional<float> star_magnitude_limit;  // none: the scene's limit
+    std::optional<AlignmentPattern> pattern;    // none: no pattern (the scene)
 };
 
 class ShowScript {
@@ -65,8 +67,9 @@ public:
     ShowScript(std::vector<ShowKeyframe> keys, double frame_interval_s, std::vector<ShowEvent> events = {});
     static ShowScript load(const std::string& file, const SceneConfig& scene);
 
-    // The snapshot for a show time: sim time, camera, every body's state (ephemeris) and the
-    // shadow mode (the scene's default until a keyframe switches it) in settings.flags.
+    // The snapshot for a show time: sim time, camera, every body's state (ephemeris), the shadow
+    // mode (the scene's default until a keyframe switches it) and the alignment pattern in
+    // settings.flags.
     Snapshot evaluate(double show_time_s, const SceneConfig& scene) const;
     // The settings in force at a show time (evaluate() applies the shadow mode to settings.flags;
     // the master applies exposure and star limit when it finishes the snapshot).

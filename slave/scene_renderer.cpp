@@ -14,6 +14,7 @@
 #include "passes/glare_pass.hpp"
 #include "passes/glare_probe.hpp"
 #include "passes/painter_pass.hpp"
+#include "passes/pattern_pass.hpp"
 #include "passes/render_pass.hpp"
 #include "passes/star_pass.hpp"
 #include "projection/dome_frame.hpp"
@@ -83,6 +84,9 @@ struct SceneRenderer::Impl {
         if (!atm.empty()) atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows));
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe));
+        // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
+        // above, which are then skipped (render()); the passes after it (the output) draw it.
+        pattern = &add(std::make_unique<PatternPass>(cluster, ch));
         FrameTargets::check_order(passes);
     }
 
@@ -94,6 +98,8 @@ struct SceneRenderer::Impl {
     }
 
     FrameContext frame_context(const Snapshot& snap) const;
+    // Where render() starts in the pass list: the first pass, or the pattern when one is on.
+    size_t first_pass(const Snapshot& snap) const;
 
     SceneConfig scene;
     ChannelFrustum frustum;
@@ -105,6 +111,7 @@ struct SceneRenderer::Impl {
     std::vector<std::unique_ptr<RenderPass>> passes;
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere
+    PatternPass* pattern = nullptr;        // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
     uint64_t read_backs = 0;  // frames read back (read_back())
 };
@@ -118,6 +125,7 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     f.view.channel_to_world = glm::mat3_cast(snap.camera_orientation) * tilt;
     f.view.world_to_channel = glm::transpose(f.view.channel_to_world);
     f.view.camera_position_m = snap.camera_position_m;
+    if (alignment_pattern_of(snap.settings.flags) != AlignmentPattern::Off) return f;  // no scene drawn
     check_body_ids(snap, scene);
     if (const BodyState* st = find_star(snap, scene)) {
         const BodyConfig& b = scene.bodies[st->id];
@@ -133,6 +141,13 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
         if (it.body->kind != BodyKind::Star)
             f.casters[it.body->id] = casting->casters_for(snap, it.body->id, f.view.world_to_channel);
     return f;
+}
+
+size_t SceneRenderer::Impl::first_pass(const Snapshot& snap) const {
+    if (alignment_pattern_of(snap.settings.flags) == AlignmentPattern::Off) return 0;
+    for (size_t i = 0; i < passes.size(); ++i)
+        if (passes[i].get() == pattern) return i;
+    return 0;
 }
 
 SceneRenderer::SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene)
@@ -199,7 +214,8 @@ void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const FrameContext frame = m.frame_context(snap);
     m.targets.begin_frame();
-    for (const auto& pass : m.passes) {
+    for (size_t i = m.first_pass(snap); i < m.passes.size(); ++i) {
+        RenderPass* pass = m.passes[i].get();
         const PassIo io = pass->io();
         const int steps = pass->prepare(frame);
         for (int step = 0; step < steps; ++step) {

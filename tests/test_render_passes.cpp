@@ -259,11 +259,12 @@ TEST(RenderPasses, ThePipelineRunsInItsDocumentedOrder) {
     context();
     const View with_glare(true);
     EXPECT_EQ(SceneRenderer(with_glare.cluster, with_glare.channel, with_glare.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "atmosphere", "glare"}));
+              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "atmosphere", "glare",
+                                        "alignment pattern"}));
     View airless;
     airless.scene.bodies[kEarth].atmosphere.present = false;
     EXPECT_EQ(SceneRenderer(airless.cluster, airless.channel, airless.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies"}));
+              (std::vector<std::string>{"stars", "sun and bodies", "alignment pattern"}));
 }
 
 // Before the atmosphere: the planet's surface is relit from the G-buffer (the constant is gone),

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "wire/byte_io.hpp"
 
@@ -149,6 +150,22 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
     if (r.remaining() != 0)
         throw WireError(std::to_string(r.remaining()) + " unexpected bytes after the snapshot's last field");
     return s;
+}
+
+const std::vector<std::string>& alignment_pattern_names() {
+    static const std::vector<std::string> names{"off", "grid", "white", "black"};
+    return names;
+}
+
+const char* alignment_pattern_name(AlignmentPattern p) {
+    return alignment_pattern_names().at(static_cast<size_t>(p)).c_str();
+}
+
+AlignmentPattern alignment_pattern_from_name(const std::string& name) {
+    const auto& n = alignment_pattern_names();
+    for (size_t i = 0; i < n.size(); ++i)
+        if (n[i] == name) return static_cast<AlignmentPattern>(i);
+    throw std::invalid_argument("unknown alignment pattern \"" + name + "\" (grid, white, black or off)");
 }
 
 std::string snapshot_hash(const std::vector<uint8_t>& encoded) {

@@ -18,10 +18,19 @@ struct BodyState {
     bool operator==(const BodyState&) const = default;
 };
 
+// The alignment pattern every channel draws instead of the scene (docs/ALIGNMENT.md): one value
+// for the whole cluster, decided by the master once per frame.
+enum class AlignmentPattern : uint8_t {
+    Off = 0,    // the scene
+    Grid = 1,   // azimuth/elevation grid in dome coordinates, channel label, overlaps tinted
+    White = 2,  // a uniform white field (blend checks)
+    Black = 3,  // a black field (black level)
+};
+
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;        // effect switches (bits 0..2: eclipse shadow mode)
+    uint32_t flags = 0;        // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     bool operator==(const RenderSettings&) const = default;
 };
@@ -61,6 +70,22 @@ struct Snapshot {
 
     bool operator==(const Snapshot&) const = default;
 };
+
+// RenderSettings::flags bits 3..4: the alignment pattern. Every value of the two bits is a
+// pattern, so the snapshot's layout is unchanged and a node that ignores the bits draws the scene.
+constexpr uint32_t kAlignmentPatternShift = 3;
+constexpr uint32_t kAlignmentPatternMask = 0x3u << kAlignmentPatternShift;
+inline AlignmentPattern alignment_pattern_of(uint32_t flags) {
+    return static_cast<AlignmentPattern>((flags & kAlignmentPatternMask) >> kAlignmentPatternShift);
+}
+inline uint32_t with_alignment_pattern(uint32_t flags, AlignmentPattern p) {
+    return (flags & ~kAlignmentPatternMask) | (static_cast<uint32_t>(p) << kAlignmentPatternShift);
+}
+// "off", "grid", "white", "black" (in AlignmentPattern's order).
+const std::vector<std::string>& alignment_pattern_names();
+const char* alignment_pattern_name(AlignmentPattern p);
+// Throws std::invalid_argument naming the word and the choices.
+AlignmentPattern alignment_pattern_from_name(const std::string& name);
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s);
 // Throws WireError naming the field when the payload is short, long or holds a non-finite value.

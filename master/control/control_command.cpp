@@ -8,6 +8,7 @@
 
 #include "config/scene_config.hpp"
 #include "scene/sim_time.hpp"
+#include "wire/snapshot.hpp"
 
 namespace cupola {
 
@@ -39,7 +40,7 @@ const std::string& control_help() {
     static const std::string text =
         "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
-        "set star_limit <mag>|show | status | quit | help";
+        "set star_limit <mag>|show | pattern grid|white|black|off|show | status | quit | help";
     return text;
 }
 
@@ -131,6 +132,15 @@ void parse_set(const Words& w, ControlCommand& c) {
     }
 }
 
+void parse_pattern(const Words& w, ControlCommand& c) {
+    expect_count(w, 2, 2, "pattern grid|white|black|off|show");
+    c.verb = ControlVerb::Pattern;
+    c.pattern = lower_case(w[1]);
+    const auto& n = alignment_pattern_names();
+    if (c.pattern != "show" && std::find(n.begin(), n.end(), c.pattern) == n.end())
+        throw ControlError("pattern: \"" + w[1] + "\" is not one of grid, white, black, off, show");
+}
+
 }  // namespace
 
 ControlCommand parse_control_line(const std::string& line) {
@@ -158,6 +168,8 @@ ControlCommand parse_control_line(const std::string& line) {
                                     : ControlVerb::Help;
     } else if (verb == "set") {
         parse_set(w, c);
+    } else if (verb == "pattern") {
+        parse_pattern(w, c);
     } else {
         throw ControlError("unknown command \"" + w[0] + "\"; " + control_help());
     }

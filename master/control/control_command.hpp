@@ -12,6 +12,8 @@
 //   set shadow_mode <mode>         exact|fast|lut|illustrative|off, or "show" (the show's again)
 //   set exposure <x>|auto|show     fixed exposure, the cluster's (auto) exposure, or the show's
 //   set star_limit <mag>|show      faintest star drawn
+//   pattern grid|white|black|off|show  alignment pattern on every channel instead of the scene
+//                                  (docs/ALIGNMENT.md); "show": the show's pattern again
 //   status                         one JSON line: frame, mode, time, rate, camera, show
 //   quit                           stop the show and the cluster
 //   help                           the list above
@@ -27,7 +29,7 @@ struct ControlError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-enum class ControlVerb { Goto, Mode, TimeRate, TimeSet, Play, Pause, Resume, Stop, Set, Status, Quit, Help };
+enum class ControlVerb { Goto, Mode, TimeRate, TimeSet, Play, Pause, Resume, Stop, Set, Pattern, Status, Quit, Help };
 
 struct ControlCommand {
     ControlVerb verb = ControlVerb::Help;
@@ -41,6 +43,7 @@ struct ControlCommand {
     std::string setting;            // set: shadow_mode | exposure | star_limit
     std::string value;              // set: the value as typed (lower case)
     std::optional<double> number;   // set exposure / star_limit: the value when it is a number
+    std::string pattern;            // pattern: off | grid | white | black | show
 };
 
 // Parses one line (without its newline). Throws ControlError on anything else.

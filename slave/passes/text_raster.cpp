@@ -1,0 +1,89 @@
+#include "passes/text_raster.hpp"
+
+#include <ft2build.h>
+#include FT_FREETYPE_H
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+
+namespace cupola {
+
+namespace {
+
+std::string freetype_failure(const std::string& what, const std::string& font_file, FT_Error error) {
+    const char* text = FT_Error_String(error);
+    return "text raster: " + what + " (font " + font_file +
+           "): " + (text ? std::string(text) : "FreeType error " + std::to_string(error));
+}
+
+struct FaceHandle {
+    FT_Library library = nullptr;
+    FT_Face face = nullptr;
+    ~FaceHandle() {
+        if (face) FT_Done_Face(face);
+        if (library) FT_Done_FreeType(library);
+    }
+};
+
+void open_face(FaceHandle& h, const std::string& font_file, int pixel_size) {
+    if (FT_Error e = FT_Init_FreeType(&h.library)) throw std::runtime_error(freetype_failure("init", font_file, e));
+    if (FT_Error e = FT_New_Face(h.library, font_file.c_str(), 0, &h.face))
+        throw std::runtime_error(freetype_failure("cannot open the face", font_file, e));
+    if (FT_Error e = FT_Set_Pixel_Sizes(h.face, 0, static_cast<FT_UInt>(pixel_size)))
+        throw std::runtime_error(freetype_failure("cannot set the pixel size", font_file, e));
+}
+
+char printable(char c) { return c >= 0x20 && c < 0x7f ? c : '?'; }
+
+void load_glyph(FT_Face face, char c, const std::string& font_file) {
+    if (FT_Error e = FT_Load_Char(face, static_cast<unsigned char>(printable(c)), FT_LOAD_RENDER))
+        throw std::runtime_error(freetype_failure(std::string("cannot render '") + printable(c) + "'", font_file, e));
+}
+
+// The glyph just loaded, its bitmap's top-left at (left, top) of the raster, clipped to it.
+void blit_glyph(const FT_GlyphSlot g, int left, int top, TextRaster& out) {
+    const FT_Bitmap& b = g->bitmap;
+    for (unsigned row = 0; row < b.rows; ++row) {
+        const int y = top + static_cast<int>(row);
+        if (y < 0 || y >= out.height) continue;
+        for (unsigned col = 0; col < b.width; ++col) {
+            const int x = left + static_cast<int>(col);
+            if (x < 0 || x >= out.width) continue;
+            const float v = b.buffer[row * static_cast<unsigned>(b.pitch) + col] / 255.0f;
+            float& dst = out.coverage[static_cast<size_t>(y) * out.width + x];
+            dst = std::max(dst, v);
+        }
+    }
+}
+
+}  // namespace
+
+TextRaster rasterize_text(const std::string& text, int pixel_size, const std::string& font_file) {
+    if (pixel_size < 4 || pixel_size > 512)
+        throw std::invalid_argument("text raster: pixel size " + std::to_string(pixel_size) + " is not in 4..512");
+    FaceHandle h;
+    open_face(h, font_file, pixel_size);
+    const FT_Size_Metrics& m = h.face->size->metrics;
+    const int ascender = static_cast<int>(m.ascender >> 6), descender = static_cast<int>(m.descender >> 6);
+    // The advance of every glyph gives the width; a margin of one pixel on each side.
+    long pen_26_6 = 0;
+    for (char c : text) {
+        load_glyph(h.face, c, font_file);
+        pen_26_6 += h.face->glyph->advance.x;
+    }
+    TextRaster out;
+    out.width = std::max(1, static_cast<int>(pen_26_6 >> 6) + 2);
+    out.height = std::max(1, ascender - descender);
+    out.coverage.assign(static_cast<size_t>(out.width) * out.height, 0.0f);
+    long pen = 64;  // 26.6: one pixel of margin
+    for (char c : text) {
+        load_glyph(h.face, c, font_file);
+        const FT_GlyphSlot g = h.face->glyph;
+        blit_glyph(g, static_cast<int>(pen >> 6) + g->bitmap_left, ascender - g->bitmap_top, out);
+        pen += g->advance.x;
+    }
+    return out;
+}
+
+}  // namespace cupola

@@ -1,0 +1,26 @@
+#pragma once
+// A line of text rasterized on the CPU with FreeType (FreeType tutorial, steps 1 and 2:
+// FT_Set_Pixel_Sizes, FT_Load_Char with FT_LOAD_RENDER, the glyph metrics in 26.6 fixed point;
+// docs/REFERENCES.md): the glyphs' 8-bit coverage placed along one baseline. Done once at
+// start-up (the alignment pattern's channel label, slave/passes/pattern_pass.hpp).
+#include <string>
+#include <vector>
+
+namespace cupola {
+
+// The DejaVu Sans face that Debian's fonts-dejavu-core installs (scripts/setup.sh).
+inline constexpr const char* kDefaultFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+struct TextRaster {
+    int width = 0;
+    int height = 0;               // the face's line height at the pixel size (ascender - descender)
+    std::vector<float> coverage;  // width x height, 0..1, row 0 at the top
+    float at(int x, int y) const { return coverage[static_cast<size_t>(y) * width + x]; }
+};
+
+// The text (ASCII; other bytes are drawn as '?') in the font file at a pixel size (the em
+// height, 4..512). Throws std::runtime_error naming the font file and FreeType's error when the
+// face cannot be opened or a glyph cannot be rendered.
+TextRaster rasterize_text(const std::string& text, int pixel_size, const std::string& font_file = kDefaultFontFile);
+
+}  // namespace cupola
