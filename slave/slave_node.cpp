@@ -196,7 +196,6 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     // The warp pass and every sink's take; encoding files overlaps the next frame's render, and
     // write_ms is the time spent waiting for room in the files sink's queue.
     const double wait_ms = output.take(renderer, meta, snap.settings.exposure);
-    output.present(snap.frame);  // live sinks swap
 
     FrameReport rep;
     rep.render_ms = std::chrono::duration<float, std::milli>(t1 - t0).count();
@@ -214,7 +213,7 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
 // (or what implies it) arrives through the loop's receive step, and hands it here; with the swap
 // lock off it hands it at once. The output swaps; its time goes into the next report.
 void SlaveNode::Loop::present(const PresentJob& job) {
-    const uint64_t present_ns = node.presenter_(job.frame);
+    const uint64_t present_ns = output.present(job.frame);  // live sinks swap
     protocol.presented(job.frame, present_ns);
     present_log.write(channel.id, job, present_ns);
 }

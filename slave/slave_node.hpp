@@ -1,11 +1,11 @@
 #pragma once
 // The slave process for one channel: joins the cluster, renders every snapshot it receives into
-// its frustum slice, writes the frame files and reports "frame N rendered" to the master.
+// its frustum slice, hands it to its output stage (slave/output/projector_output), reports "ready N"
+// to the master and shows the frame on its "present N" (the swap lock, docs/SWAP_LOCK.md).
 #include <atomic>
 #include <string>
 
 #include "config/cluster_config.hpp"
-#include "frame_presenter.hpp"
 
 namespace cupola {
 
@@ -23,8 +23,6 @@ public:
     SlaveNode(ClusterConfig cluster, int channel_id, SlaveOptions options);
     int run();
     void stop() { stop_requested_ = true; }
-    // The output's present (frame_presenter.hpp); the files output's by default.
-    void set_presenter(FramePresenter presenter) { presenter_ = std::move(presenter); }
 
 private:
     struct Loop;  // one run's renderer, wire and protocol session (slave_node.cpp)
@@ -32,7 +30,6 @@ private:
     ClusterConfig cluster_;
     ChannelConfig channel_;
     SlaveOptions options_;
-    FramePresenter presenter_ = files_presenter();
     std::atomic<bool> stop_requested_{false};
 };
 
