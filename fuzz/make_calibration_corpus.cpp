@@ -3,6 +3,7 @@
 // profiles, blend maps, v1 attributes, big-endian PFM) and DIR/pfm-* (a switch byte + a PFM).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string dir = argv[1];
+    std::filesystem::create_directories(dir);
     MpcdiWriting plain;
     MpcdiWriting other;
     other.layout.pfm_rows = PfmRows::top_first;
