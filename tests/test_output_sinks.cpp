@@ -97,6 +97,13 @@ EncodedImage read_bytes(const std::string& path) {
     return img;
 }
 
+// One X server for the whole program, stopped at exit: servers started and stopped in quick
+// succession on the same display number were seen to refuse a connection now and then.
+test::XvfbDisplay& xvfb() {
+    static test::XvfbDisplay x(kWidth, kHeight);
+    return x;
+}
+
 SinkConfig window_sinks(const std::string& display, std::vector<std::string> names) {
     SinkConfig s;
     s.sinks = std::move(names);
@@ -111,7 +118,7 @@ SinkConfig window_sinks(const std::string& display, std::vector<std::string> nam
 // alpha). Exact because both are the warp pass's one encoded RGBA8 target: the window gets it
 // by a same-size blit, the PNG by a read-back of the same texture.
 TEST(OutputSinks, WindowShowsExactlyTheFilesSinkPng) {
-    test::XvfbDisplay x(kWidth, kHeight);
+    test::XvfbDisplay& x = xvfb();
     if (!x.skip_reason().empty()) GTEST_SKIP() << x.skip_reason();
     MoonView v;
     OutputSurface surface(window_sinks(x.name(), {"window", "files"}), -1, kWidth, kHeight);
@@ -151,7 +158,7 @@ TEST(OutputSinks, WindowShowsExactlyTheFilesSinkPng) {
 // A slave whose only sink is a window reads nothing back to the CPU: no glReadPixels of the
 // channel render or of the projector frame, yet the frame reaches the window.
 TEST(OutputSinks, WindowOnlyReadsNothingBack) {
-    test::XvfbDisplay x(kWidth, kHeight);
+    test::XvfbDisplay& x = xvfb();
     if (!x.skip_reason().empty()) GTEST_SKIP() << x.skip_reason();
     MoonView v;
     const SinkConfig sinks = window_sinks(x.name(), {"window"});
@@ -205,7 +212,7 @@ TEST(OutputSinks, FilesOnlyWritesTheChannelRenderAsBefore) {
 // The window covers the RandR output it names; an output that does not exist is an error naming
 // the field and listing the outputs there are.
 TEST(OutputSinks, WindowCoversTheNamedRandROutput) {
-    test::XvfbDisplay x(kWidth, kHeight);
+    test::XvfbDisplay& x = xvfb();
     if (!x.skip_reason().empty()) GTEST_SKIP() << x.skip_reason();
     SinkConfig sinks = window_sinks(x.name(), {"window"});
     sinks.window.output_name = "NO-SUCH-1";

@@ -8,6 +8,8 @@
 
 #include <stdexcept>
 
+#include <unistd.h>
+
 namespace cupola {
 
 namespace {
@@ -62,6 +64,16 @@ void wait_mapped(Display* dpy, Window w) {
     while (ev.type != MapNotify);
 }
 
+// A display server that is starting (a node booting into its channel) or busy may refuse a
+// connection for a moment: try for up to 2 s.
+Display* open_display(const std::string& name) {
+    for (int attempt = 0; attempt < 20; ++attempt) {
+        if (Display* dpy = XOpenDisplay(name.c_str())) return dpy;
+        ::usleep(100000);
+    }
+    return nullptr;
+}
+
 int mask_shift(unsigned long mask) {
     int s = 0;
     while (mask && !(mask & 1)) {
@@ -94,8 +106,10 @@ ScreenRect x11_output_rect(void* display, const std::string& output_name) {
 
 X11Window::X11Window(const WindowOutputConfig& config, int raster_width, int raster_height) {
     XSetErrorHandler(log_x_error);
-    Display* dpy = XOpenDisplay(config.display.c_str());
-    if (!dpy) throw std::runtime_error("output.window.display \"" + config.display + "\": cannot open the X11 display");
+    Display* dpy = open_display(config.display);
+    if (!dpy)
+        throw std::runtime_error("output.window.display \"" + config.display +
+                                 "\": cannot open the X11 display (tried for 2 s)");
     display_ = dpy;
     try {
         rect_ = x11_output_rect(dpy, config.output_name);

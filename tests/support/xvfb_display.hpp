@@ -5,9 +5,12 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -42,7 +45,10 @@ public:
         ::close(fds[1]);
         name_ = read_display(fds[0]);
         ::close(fds[0]);
-        if (name_.empty()) skip_ = "Xvfb did not report a display within 10 s";
+        if (name_.empty())
+            skip_ = "Xvfb did not report a display within 10 s";
+        else if (!accepts(name_.substr(1)))
+            skip_ = "Xvfb on " + name_ + " accepts no connection within 5 s";
     }
     ~XvfbDisplay() {
         if (pid_ > 0) {
@@ -70,6 +76,21 @@ private:
             start = end + 1;
         }
         return {};
+    }
+    // The server's local socket takes a connection (the X11 convention: /tmp/.X11-unix/X<N>).
+    static bool accepts(const std::string& number) {
+        const std::string path = "/tmp/.X11-unix/X" + number;
+        for (int tries = 0; tries < 100; ++tries) {
+            const int s = ::socket(AF_UNIX, SOCK_STREAM, 0);
+            sockaddr_un a{};
+            a.sun_family = AF_UNIX;
+            std::snprintf(a.sun_path, sizeof a.sun_path, "%s", path.c_str());
+            const bool ok = ::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+            ::close(s);
+            if (ok) return true;
+            ::usleep(50000);
+        }
+        return false;
     }
     static std::string read_display(int fd) {
         std::string digits;
