@@ -15,6 +15,8 @@ PACKAGES=(
   libvalijson-dev                              # JSON Schema validation of the configs (configs/schema/)
   libsodium-dev                                # HMAC-SHA256 packet authentication, BLAKE2b hashes
   liberfa-dev                                  # time scales and Earth rotation (ERFA)
+  libzip-dev libpugixml-dev                    # MPCDI calibration packages: zip container, mpcdi.xml
+  python3-numpy python3-openimageio            # tools/mpcdi_reference.py, the independent MPCDI reading
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   xplanet-images                               # Earth texture
   iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
