@@ -107,10 +107,12 @@ private:
 // N equal projectors around the springline, each standing across the dome from where it aims:
 // projector k ("proj<k>") aims at yaw 360 k / N (0 front, 90 right) and pitch_deg, from the
 // springline point at azimuth yaw + 180 and distance_fraction radii from the centre.
+// The defaults are the demo's dome (configs/dome-4proj.json): four 85-degree fisheyes 0.6 radii
+// from the centre, pitched up 30 degrees, lighting the whole dome with two to four of them at the apex.
 struct ProjectorRing {
     int count = 4;
-    ProjectorLens lens;
-    double distance_fraction = 0.9;
+    ProjectorLens lens{LensKind::Fisheye, 85.0, 0.0};
+    double distance_fraction = 0.6;
     double pitch_deg = 30.0;
     int raster_width = 640;
     int raster_height = 400;

@@ -130,8 +130,8 @@ std::vector<ProjectorWarp> ideal_projector_warps(const IdealCalibrationSpec& spe
         // The warp's (u, v) are fractions of the render, so any render size gives the same grid.
         const ChannelFrustum channel(frustum.orientation, frustum.fov, p.width(), p.height());
         w.grid = ideal_warp_grid(p, channel, spec.grid_columns, spec.grid_rows);
-        const int aw = spec.alpha_width > 0 ? spec.alpha_width : p.width();
-        const int ah = spec.alpha_height > 0 ? spec.alpha_height : p.height();
+        const int aw = spec.alpha_width > 0 ? spec.alpha_width : std::max(2, p.width() / 2);
+        const int ah = spec.alpha_height > 0 ? spec.alpha_height : std::max(2, p.height() / 2);
         w.alpha = dome_alpha_map(projectors, k, aw, ah, spec.ramp);
         w.projector_gamma = spec.projector_gamma;
         warps.push_back(std::move(w));

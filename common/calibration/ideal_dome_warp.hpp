@@ -38,7 +38,7 @@ struct IdealCalibrationSpec {
     std::vector<ProjectorPlacement> projectors;
     int grid_columns = 64;  // warp grid points across the raster
     int grid_rows = 64;
-    int alpha_width = 0;  // alpha map texels; 0: the raster's size
+    int alpha_width = 0;  // alpha map texels; 0: half the raster's (the blend is smooth at that scale)
     int alpha_height = 0;
     BlendRamp ramp;
     double frustum_margin_deg = 2.0;
