@@ -48,6 +48,8 @@ BlendMap decode_blend_map(const std::string& png_bytes, const std::string& name,
     if (!in) throw CalibrationError(name, "PNG", "no PNG reader: " + OIIO::geterror());
     OIIO::ImageSpec spec;
     OIIO::ImageSpec config;
+    void* proxy = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     if (!in->open("map.png", spec, config))
         throw CalibrationError(name, "PNG", "not a readable PNG: " + in->geterror());
     check_spec(spec, name, expected);

@@ -11,6 +11,9 @@ std::string compose(const std::string& file, const std::string& field, const std
 }  // namespace
 
 CalibrationError::CalibrationError(std::string file, std::string field, const std::string& message)
-    : std::runtime_error(compose(file, field, message)), file_(std::move(file)), field_(std::move(field)) {}
+    : std::runtime_error(compose(file, field, message)),
+      file_(std::move(file)),
+      field_(std::move(field)),
+      message_(message) {}
 
 }  // namespace cupola

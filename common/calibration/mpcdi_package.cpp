@@ -92,7 +92,11 @@ CalibratedFrustum MpcdiPackageParser::parse_frustum(pugi::xml_node f, const std:
     a.left_angle = number_child(f, "leftAngle", w);
     a.up_angle = number_child(f, "upAngle", w);
     a.down_angle = number_child(f, "downAngle", w);
-    return frustum_from_mpcdi(a, name + " " + where);
+    try {
+        return frustum_from_mpcdi(a, name);
+    } catch (const CalibrationError& e) {
+        throw CalibrationError(name, where + " " + e.field(), e.message());
+    }
 }
 
 MpcdiRegionInfo MpcdiPackageParser::parse_region(pugi::xml_node r, const MpcdiRegionInfo& buffer,
@@ -204,10 +208,19 @@ std::string MpcdiPackage::entry(const std::string& path, const std::string& fiel
 
 namespace {
 
-BlendMap read_map(const MpcdiPackage& p, const MpcdiFileRef& ref, const std::string& field,
-                  const std::string& contents) {
-    const std::string name = p.name() + " " + field + " " + ref.path;
-    return decode_blend_map(contents, name, BlendMapEncoding{ref.bit_depth, ref.component_depth, ref.gamma_embedded});
+// Runs a step that reads one file of the package; its errors name the package and, as the field,
+// `part` (which file of which region) followed by the field within that file.
+template <class Step>
+auto within(const std::string& package, const std::string& part, Step&& step) {
+    try {
+        return step();
+    } catch (const CalibrationError& e) {
+        throw CalibrationError(package, part + (e.field().empty() ? "" : " " + e.field()), e.message());
+    }
+}
+
+BlendMapEncoding encoding(const MpcdiFileRef& ref) {
+    return BlendMapEncoding{ref.bit_depth, ref.component_depth, ref.gamma_embedded};
 }
 
 }  // namespace
@@ -228,22 +241,30 @@ ProjectorWarp MpcdiPackage::read_region(const std::string& region_id, const Mpcd
     w.raster_width = info->x_resolution;
     w.raster_height = info->y_resolution;
     w.frustum = info->frustum;
-    const std::string pfm_name = name_ + " " + where + " geometryWarpFile " + info->warp_file.path;
-    const PfmImage pfm =
-        decode_pfm(entry(info->warp_file.path, where + " geometryWarpFile"), pfm_name, reading.pfm_rows);
+    const MpcdiFileRef& wf = info->warp_file;
+    const std::string pfm_part = where + " geometryWarpFile " + wf.path;
+    const std::string pfm_bytes = entry(wf.path, where + " geometryWarpFile");
+    const PfmImage pfm = within(name_, pfm_part, [&] { return decode_pfm(pfm_bytes, wf.path, reading.pfm_rows); });
     if (geometry_level_ == 1 && (pfm.width > 32 || pfm.height > 32))
-        spdlog::warn("{}: {}x{} points, more than geometry level 1's 32x32", pfm_name, pfm.width, pfm.height);
+        spdlog::warn("{}: {}: {}x{} points, more than geometry level 1's 32x32", name_, pfm_part, pfm.width,
+                     pfm.height);
     const WarpGridReading grid_reading{WarpFileFrame{profile_ == "3d", info->x, info->y, info->x_size, info->y_size,
                                                      reading.v_origin, reading.coordinates},
                                        reading.warp_direction, w.raster_width, w.raster_height};
-    w.grid = warp_grid_from_pfm(pfm, grid_reading, pfm_name);
+    w.grid = within(name_, pfm_part, [&] { return warp_grid_from_pfm(pfm, grid_reading, wf.path); });
     if (info->alpha_map.given) {
+        const MpcdiFileRef& a = info->alpha_map;
+        const std::string bytes = entry(a.path, where + " alphaMap");
         w.alpha =
-            read_map(*this, info->alpha_map, where + " alphaMap", entry(info->alpha_map.path, where + " alphaMap"));
-        if (info->alpha_map.gamma_embedded_given) w.projector_gamma = info->alpha_map.gamma_embedded;
+            within(name_, where + " alphaMap " + a.path, [&] { return decode_blend_map(bytes, a.path, encoding(a)); });
+        if (a.gamma_embedded_given) w.projector_gamma = a.gamma_embedded;
     }
-    if (info->beta_map.given)
-        w.beta = read_map(*this, info->beta_map, where + " betaMap", entry(info->beta_map.path, where + " betaMap"));
+    if (info->beta_map.given) {
+        const MpcdiFileRef& b = info->beta_map;
+        const std::string bytes = entry(b.path, where + " betaMap");
+        w.beta =
+            within(name_, where + " betaMap " + b.path, [&] { return decode_blend_map(bytes, b.path, encoding(b)); });
+    }
     return w;
 }
 

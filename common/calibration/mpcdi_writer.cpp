@@ -3,6 +3,7 @@
 #include <zip.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <pugixml.hpp>
@@ -53,11 +54,11 @@ PfmImage warp_pfm(const MpcdiRegionOut& r, const WarpFileFrame& frame) {
     return img;
 }
 
+// The shortest text that reads back to exactly v.
 std::string number(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
 }
 
 void add_text(pugi::xml_node parent, const char* name, const std::string& text) {
