@@ -6,12 +6,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "calibration/ideal_dome_checks.hpp"
 #include "calibration/ideal_dome_package.hpp"
 #include "calibration/ideal_dome_warp.hpp"
 #include "calibration/mpcdi_package.hpp"
+#include "config/cluster_config.hpp"
+#include "config/config_error.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -213,4 +216,42 @@ TEST(IdealDome, BlendIsFlatOnTheDomeNormalLens) {
     const auto spec = normal_spec();
     const auto back = write_and_read(ideal_projector_warps(spec), test::scratch_dir("ideal_dome_blend_n") + "/d.mpcdi");
     expect_blend_flat(spec, back, "normal");
+}
+
+TEST(IdealDome, DemoConfigTakesItsChannelsFromThePackage) {
+    const ClusterConfig config = load_cluster_config(test::source_path("configs/dome-4proj.json"));
+    const auto warps = ideal_projector_warps(fisheye_spec());
+    ASSERT_EQ(config.channels.size(), warps.size());
+    for (size_t k = 0; k < warps.size(); ++k) {
+        const ChannelConfig& c = config.channels[k];
+        ASSERT_TRUE(c.calibration);
+        EXPECT_EQ(c.calibration->region, warps[k].region_id);
+        EXPECT_TRUE(c.calibration->frustum_from_file);
+        EXPECT_EQ(c.calibration->raster_width, warps[k].raster_width);
+        EXPECT_EQ(c.calibration->raster_height, warps[k].raster_height);
+        EXPECT_NEAR(c.orientation.yaw_deg, warps[k].frustum->orientation.yaw_deg, 1e-6);
+        EXPECT_NEAR(c.orientation.pitch_deg, warps[k].frustum->orientation.pitch_deg, 1e-6);
+        EXPECT_NEAR(c.fov.left_deg, warps[k].frustum->fov.left_deg, 1e-6);
+        EXPECT_NEAR(c.fov.up_deg, warps[k].frustum->fov.up_deg, 1e-6);
+        EXPECT_NEAR(c.fov.down_deg, warps[k].frustum->fov.down_deg, 1e-6);
+    }
+}
+
+TEST(IdealDome, ConfigNamesAMissingRegion) {
+    const std::string dir = test::scratch_dir("ideal_dome_config");
+    std::string text = test::read_text(test::source_path("configs/dome-4proj.json"));
+    const std::string from = "\"region\": \"proj2\"";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), "\"region\": \"proj9\"");
+    for (const char* rel : {"keys", "scenes", "shows", "calibration"})
+        std::filesystem::create_directory_symlink(test::source_path(std::string("configs/") + rel), dir + "/" + rel);
+    test::write_text(dir + "/bad.json", text);
+    try {
+        (void)load_cluster_config(dir + "/bad.json");
+        FAIL() << "a missing region was accepted";
+    } catch (const ConfigError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("channels[2].calibration.region"), std::string::npos) << what;
+        EXPECT_NE(what.find("proj9"), std::string::npos) << what;
+    }
 }

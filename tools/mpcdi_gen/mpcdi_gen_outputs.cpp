@@ -81,10 +81,10 @@ std::string alpha_mosaic(const std::string& dir, const std::vector<ProjectorWarp
 void write_calibrated_config(const std::string& template_file, const std::string& out_file,
                              const std::string& mpcdi_file, const std::vector<ProjectorWarp>& warps) {
     std::ifstream in(template_file);
-    nlohmann::json config = nlohmann::json::parse(in);
+    nlohmann::ordered_json config = nlohmann::ordered_json::parse(in);
     const fs::path out_dir = fs::absolute(out_file).parent_path();
     const std::string relative = fs::relative(fs::absolute(mpcdi_file), out_dir).generic_string();
-    nlohmann::json channels = nlohmann::json::array();
+    nlohmann::ordered_json channels = nlohmann::ordered_json::array();
     for (size_t k = 0; k < warps.size(); ++k)
         channels.push_back({{"id", k},
                             {"name", warps[k].region_id},
