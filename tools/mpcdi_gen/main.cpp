@@ -2,7 +2,8 @@
 // N equal projectors on the springline, each aimed across the dome) and checks it against the
 // analytic model, after reading the file back.
 //   cupola-mpcdi-gen --out FILE.mpcdi [--projectors N] [--lens fisheye|normal] [--lens-fov DEG] ...
-//                    [--config-template FILE --config-out FILE] [--images DIR]
+//                    [--config-template FILE --config-out FILE] [--images DIR] [--check]
+//                    [--stitch-frames F0 F1 ... --stitch-out FILE.png]   (warped projector frames back onto the dome)
 // Exit status: 0 written (and, with --check, within the bounds), 1 a failure or a bound missed,
 // 2 bad arguments.
 #include <CLI/CLI.hpp>
@@ -25,7 +26,9 @@ struct Options {
     cupola::ProjectorRing ring;
     cupola::IdealCalibrationSpec spec;
     std::string lens = "fisheye";
-    std::string out, config_template, config_out, images_dir;
+    std::string out, config_template, config_out, images_dir, stitch_out;
+    std::vector<std::string> stitch_frames;
+    int stitch_size = 512;
     bool check = false;
 };
 
@@ -54,6 +57,10 @@ void add_options(CLI::App& app, Options& o) {
         ->check(CLI::ExistingFile);
     app.add_option("--config-out", o.config_out, "cluster config to write, one channel per region");
     app.add_option("--images", o.images_dir, "folder for the alpha maps, a test-pattern frame, the stitched dome");
+    app.add_option("--stitch-frames", o.stitch_frames, "projector frames (one per projector, in order) to stitch")
+        ->check(CLI::ExistingFile);
+    app.add_option("--stitch-out", o.stitch_out, "the stitched check image (PNG) of --stitch-frames");
+    app.add_option("--stitch-size", o.stitch_size, "its size in pixels")->check(CLI::Range(16, 8192));
     app.add_flag("--check", o.check, "read the file back and check geometry (p99 0.5 px) and blend (2 %)");
 }
 
@@ -101,6 +108,13 @@ int run(Options& o) {
     if (!o.images_dir.empty()) {
         for (const auto& path : cupola::write_calibration_images(o.images_dir, projectors, back))
             std::cout << "wrote " << path << "\n";
+    }
+    if (!o.stitch_frames.empty()) {
+        if (o.stitch_out.empty()) throw std::invalid_argument("--stitch-frames needs --stitch-out");
+        std::vector<double> gammas;
+        for (const auto& w : back) gammas.push_back(w.projector_gamma);
+        cupola::write_stitched_frames(o.stitch_out, projectors, o.stitch_frames, gammas, o.stitch_size);
+        std::cout << "wrote " << o.stitch_out << "\n";
     }
     return o.check && !report_checks(projectors, back) ? 1 : 0;
 }

@@ -59,6 +59,23 @@ Image pattern_render(const CalibratedFrustum& f, int size, const glm::vec3& tint
     return img;
 }
 
+// A frame's stored values as they are (no sRGB decode): what the projector receives.
+Image read_raw_frame(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw std::runtime_error(path + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<float> v(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, v.data()))
+        throw std::runtime_error(path + ": " + in->geterror());
+    Image img;
+    img.width = spec.width;
+    img.height = spec.height;
+    img.rgba.assign(static_cast<size_t>(spec.width) * spec.height * 4, 1.0f);
+    for (size_t p = 0; p < static_cast<size_t>(spec.width) * spec.height; ++p)
+        for (int c = 0; c < 3; ++c) img.rgba[p * 4 + c] = v[p * spec.nchannels + std::min(c, spec.nchannels - 1)];
+    return img;
+}
+
 std::string alpha_mosaic(const std::string& dir, const std::vector<ProjectorWarp>& warps) {
     const int w = warps[0].alpha.width, h = warps[0].alpha.height;
     const int cols = 2, rows = static_cast<int>((warps.size() + 1) / 2);
@@ -111,6 +128,23 @@ std::vector<std::string> write_calibration_images(const std::string& dir, const 
     written.push_back(dir + "/dome-4proj-stitched.png");
     write_png(written.back(), dome.width, dome.height, 3, rgb_of(dome, 2.2));
     return written;
+}
+
+void write_stitched_frames(const std::string& out_file, const std::vector<IdealProjector>& projectors,
+                           const std::vector<std::string>& frame_files, const std::vector<double>& gammas, int size) {
+    if (frame_files.size() != projectors.size())
+        throw std::invalid_argument("--stitch-frames: " + std::to_string(frame_files.size()) + " frames for " +
+                                    std::to_string(projectors.size()) + " projectors");
+    std::vector<Image> frames;
+    for (size_t k = 0; k < frame_files.size(); ++k) {
+        frames.push_back(read_raw_frame(frame_files[k]));
+        if (frames.back().width != projectors[k].width() || frames.back().height != projectors[k].height())
+            throw std::invalid_argument(frame_files[k] + ": not the projector's " +
+                                        std::to_string(projectors[k].width()) + "x" +
+                                        std::to_string(projectors[k].height()) + " raster");
+    }
+    const Image dome = stitch_projector_frames(projectors, frames, gammas, size);
+    write_png(out_file, dome.width, dome.height, 3, rgb_of(dome, 2.2));
 }
 
 }  // namespace cupola

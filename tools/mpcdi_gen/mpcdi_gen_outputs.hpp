@@ -20,4 +20,10 @@ void write_calibrated_config(const std::string& template_file, const std::string
 std::vector<std::string> write_calibration_images(const std::string& dir, const std::vector<IdealProjector>& projectors,
                                                   const std::vector<ProjectorWarp>& warps);
 
+// Stitches projector frames (PNG or EXR, one per projector in order, their values as the projector
+// receives them, decoded with each projector's gamma) back onto a size x size domemaster, written
+// as a PNG encoded with gamma 2.2 for viewing: the check image of a warp pass's output.
+void write_stitched_frames(const std::string& out_file, const std::vector<IdealProjector>& projectors,
+                           const std::vector<std::string>& frame_files, const std::vector<double>& gammas, int size);
+
 }  // namespace cupola
