@@ -2,6 +2,7 @@
 // every reading switch reads back, with the matching switches, to the same ProjectorWarp and the
 // same projector image; a mismatched switch gives the predicted different result; the 3d
 // profile's frustum becomes the expected ChannelFrustum; bad packages name the file and field.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <zip.h>
 
@@ -359,4 +360,62 @@ TEST(CalibrationMpcdi, SwitchesAreSetFromStrings) {
     EXPECT_EQ(to_string(r.coordinates), "buffer");
     EXPECT_EQ(to_string(r.warp_direction), "inverse");
     EXPECT_THROW(r.set("rows", "top-first"), std::invalid_argument);
+}
+
+namespace {
+
+void write_exr(const std::string& path, const LinearImage& img) {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, img.data.data()));
+    out->close();
+}
+
+LinearImage read_exr(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {};
+    const OIIO::ImageSpec& s = in->spec();
+    LinearImage img{s.width, s.height, s.nchannels, std::vector<float>(size_t(s.width) * s.height * s.nchannels)};
+    in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, img.data.data());
+    return img;
+}
+
+}  // namespace
+
+// tools/mpcdi_reference.py reads a package the way PyMPCDI does (first PFM row the top, region-local
+// coordinates, alpha = stored^gammaEmbedded); with pfm_rows top-first Cupola's reader and reference
+// warp must give the same projector image.
+TEST(CalibrationMpcdi, AgreesWithThePyMpcdiReading) {
+    const std::string dir = test::scratch_dir("calibration_mpcdi_pympcdi");
+    const MpcdiPackageOut p = sample_package();
+    MpcdiWriting w;
+    w.layout.pfm_rows = PfmRows::top_first;
+    w.gamma_embedded = 2.2;
+    w.map_bit_depth = 16;
+    write_mpcdi(dir + "/p.mpcdi", p, w);
+    const LinearImage content = test_content();
+    write_exr(dir + "/content.exr", content);
+    const std::string python = CUPOLA_SYSTEM_PYTHON3;
+    if (test::run_shell(python + " -c 'import numpy, OpenImageIO' 2>&1").first != 0)
+        GTEST_SKIP() << python << " lacks numpy or OpenImageIO (scripts/setup.sh installs python3-numpy, "
+                     << "python3-openimageio)";
+    for (const std::string region : {"proj0", "proj1"}) {
+        const auto [rc, output] = test::run_shell(python + " " + test::source_path("tools/mpcdi_reference.py") +
+                                                  " --mpcdi " + dir + "/p.mpcdi --region " + region + " --in " + dir +
+                                                  "/content.exr --out " + dir + "/" + region + ".exr 2>&1");
+        ASSERT_EQ(rc, 0) << output;
+        const LinearImage from_python = read_exr(dir + "/" + region + ".exr");
+        MpcdiReading r;
+        r.pfm_rows = PfmRows::top_first;
+        const LinearImage cpp = reference_warp(MpcdiPackage::open(dir + "/p.mpcdi").read_region(region, r), content);
+        ASSERT_EQ(from_python.width, cpp.width);
+        ASSERT_EQ(from_python.height, cpp.height);
+        ASSERT_EQ(from_python.channels, cpp.channels);
+        EXPECT_LT(max_difference(from_python, cpp), 1e-5) << region;
+        // The default reading (bottom-first) of the same file is upside down: a different image.
+        EXPECT_GT(max_difference(reference_warp(MpcdiPackage::open(dir + "/p.mpcdi").read_region(region), content),
+                                 from_python),
+                  0.05);
+    }
 }

@@ -33,7 +33,7 @@ void check_spec(const OIIO::ImageSpec& spec, const std::string& name, const Blen
         throw CalibrationError(name, "componentDepth",
                                "mpcdi.xml says " + std::to_string(expected.components) + " components, the PNG has " +
                                    std::to_string(spec.nchannels));
-    if (spec.width < 1 || spec.height < 1 || static_cast<int64_t>(spec.width) * spec.height > (int64_t(1) << 26))
+    if (spec.width < 1 || spec.height < 1 || static_cast<int64_t>(spec.width) * spec.height > (int64_t(1) << 25))
         throw CalibrationError(name, "size", "PNG size out of range");
 }
 

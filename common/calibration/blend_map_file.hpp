@@ -1,5 +1,5 @@
 #pragma once
-// MPCDI alpha and beta maps as PNG files (VESA MPCDI v2.0 (2013) §2.5.1.2): 8 or 16 bits, 1 or 3
+// MPCDI alpha and beta maps as PNG files (VESA MPCDI v2.0 (2015)): 8 or 16 bits, 1 or 3
 // components, any size. Read into the linear BlendMap of projector_warp.hpp: stored values are
 // normalized (÷255 or ÷65535), three components are averaged, and the result is raised to
 // gamma_embedded (§2.5.1.2.4: Linear = (Encoded / Scale)^gamma; 1 for beta, which is linear).

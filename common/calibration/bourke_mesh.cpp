@@ -41,9 +41,9 @@ BourkeNodes parse_nodes(const std::string& text, const std::string& name) {
     int nx = 0, ny = 0;
     if (!(dims >> nx >> ny) || nx < 2 || ny < 2 || nx > 4096 || ny > 4096)
         throw CalibrationError(name, at_line(n), "expected 'nx ny', each 2..4096");
-    b.mesh = NodeMesh{nx, ny, std::vector<glm::dvec2>(static_cast<size_t>(nx) * ny),
-                      std::vector<glm::dvec3>(static_cast<size_t>(nx) * ny)};
-    for (size_t k = 0; k < b.mesh.position.size(); ++k) {
+    b.mesh = NodeMesh{nx, ny, {}, {}};  // filled as the nodes are read: a short file costs little
+    const size_t count = static_cast<size_t>(nx) * ny;
+    for (size_t k = 0; k < count; ++k) {
         if (!next_line(in, line, n))
             throw CalibrationError(
                 name, at_line(n + 1),
@@ -53,8 +53,8 @@ BourkeNodes parse_nodes(const std::string& text, const std::string& name) {
         if (!(node >> x >> y >> u >> v >> i) || !std::isfinite(x + y + u + v + i))
             throw CalibrationError(name, at_line(n), "expected five numbers 'x y u v i'");
         const double nan = std::numeric_limits<double>::quiet_NaN();
-        b.mesh.position[k] = i < 0.0 ? glm::dvec2(nan) : glm::dvec2(x, y);  // negative i: not drawn
-        b.mesh.value[k] = glm::dvec3(u, v, i);
+        b.mesh.position.push_back(i < 0.0 ? glm::dvec2(nan) : glm::dvec2(x, y));  // negative i: not drawn
+        b.mesh.value.emplace_back(u, v, i);
     }
     if (next_line(in, line, n))
         throw CalibrationError(name, at_line(n), "more nodes than nx*ny = " + std::to_string(nx * ny));

@@ -5,7 +5,7 @@
 // one region per projector side by side (region k at x = k / N, width 1 / N): one file is the whole
 // display, as a calibration system exports it, and each channel of the cluster config names its
 // region. Alpha maps are 16-bit PNGs with gammaEmbedded 2.2 (linear = stored^2.2, VESA MPCDI v2.0
-// (2013) §2.5.1.2.4): the 8-bit form would round a projector's alpha near 0 to coarse steps.
+// (2015) §2.5.1.2.4): the 8-bit form would round a projector's alpha near 0 to coarse steps.
 #include <string>
 #include <vector>
 

@@ -19,6 +19,8 @@ bool present(const glm::dvec2& p) { return std::isfinite(p.x) && std::isfinite(p
 void index_range(double a, double b, double origin, double step, int count, int& lo, int& hi) {
     double k0 = (a - origin) / step, k1 = (b - origin) / step;
     if (k0 > k1) std::swap(k0, k1);
+    k0 = std::clamp(k0, -1.0, static_cast<double>(count));  // before the conversion to int
+    k1 = std::clamp(k1, -1.0, static_cast<double>(count));
     lo = std::max(0, static_cast<int>(std::ceil(k0 - 1e-9)));
     hi = std::min(count - 1, static_cast<int>(std::floor(k1 + 1e-9)));
 }

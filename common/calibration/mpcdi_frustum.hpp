@@ -1,5 +1,5 @@
 #pragma once
-// MPCDI's 3d-profile <frustum> (VESA MPCDI v2.0 (2013) §2.4.2: yaw, pitch, roll applied yaw
+// MPCDI's 3d-profile <frustum> (VESA MPCDI v2.0 (2015): yaw, pitch, roll applied yaw
 // first, then pitch, then roll; rightAngle, leftAngle, upAngle, downAngle in degrees, signed from
 // the view axis, so leftAngle and downAngle are negative for a frustum around its axis) and
 // Cupola's channel orientation and half-angles (common/projection/dome_frame.hpp,

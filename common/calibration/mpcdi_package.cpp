@@ -17,7 +17,7 @@
 namespace cupola {
 
 // Reads mpcdi.xml into the package's fields. Attribute and element names are compared ignoring
-// case (VESA MPCDI v2.0 (2013) §3.5.2: 2.0 writes xResolution, 1.0 files Xresolution).
+// case (VESA MPCDI v2.0 (2015) §3.5.2: 2.0 writes xResolution, 1.0 files Xresolution).
 struct MpcdiPackageParser {
     const std::string& name;
 
@@ -58,6 +58,16 @@ struct MpcdiPackageParser {
         pugi::xml_node c = child(n, key);
         if (!c) throw CalibrationError(name, where + " " + key, "missing element");
         return number(c.text().get(), where + " " + key);
+    }
+
+    int int_child(pugi::xml_node n, const char* key, const std::string& where,
+                  std::initializer_list<int> allowed) const {
+        const double v = number_child(n, key, where);
+        for (int a : allowed)
+            if (v == a) return a;
+        std::string list;
+        for (int a : allowed) list += (list.empty() ? "" : " or ") + std::to_string(a);
+        throw CalibrationError(name, where + " " + key, "must be " + list);
     }
 
     void parse_root(pugi::xml_node root, MpcdiPackage& p) const;
@@ -141,10 +151,8 @@ MpcdiFileRef MpcdiPackageParser::parse_file_ref(pugi::xml_node f, const std::str
     if (!path || std::string(path.text().get()).empty())
         throw CalibrationError(name, where + " path", "missing element");
     ref.path = path.text().get();
-    if (pugi::xml_node c = child(f, "componentDepth"))
-        ref.component_depth = static_cast<int>(number(c.text().get(), where + " componentDepth"));
-    if (pugi::xml_node c = child(f, "bitDepth"))
-        ref.bit_depth = static_cast<int>(number(c.text().get(), where + " bitDepth"));
+    if (child(f, "componentDepth")) ref.component_depth = int_child(f, "componentDepth", where, {1, 3});
+    if (child(f, "bitDepth")) ref.bit_depth = int_child(f, "bitDepth", where, {8, 16});
     if (with_gamma && child(f, "gammaEmbedded")) {
         ref.gamma_embedded = number_child(f, "gammaEmbedded", where);
         ref.gamma_embedded_given = true;

@@ -1,5 +1,5 @@
 #pragma once
-// Reads an MPCDI package (VESA MPCDI v2.0 (2013)): the zip (libzip), its mpcdi.xml (pugixml) and
+// Reads an MPCDI package (VESA MPCDI v2.0 (2015)): the zip (libzip), its mpcdi.xml (pugixml) and
 // the PFM warps and PNG blend maps (OpenImageIO) of every region, into ProjectorWarps
 // (calibration/projector_warp.hpp) under the reading switches of calibration/mpcdi_reading.hpp.
 // Profiles 2d and 3d, geometry levels 1 and 2, colour levels 1 and 2; v2.0's profile/geometry/

@@ -1,5 +1,5 @@
 #pragma once
-// How an MPCDI package is read where the standard is ambiguous (VESA MPCDI v2.0 (2013); the
+// How an MPCDI package is read where the standard is ambiguous (VESA MPCDI v2.0 (2015); the
 // choices and how each was checked: docs/MPCDI.md). Every switch has a default and can be set from
 // its string form, so a config field or a `cupola-warp` flag can pass it.
 #include <string>

@@ -38,7 +38,7 @@ void check_region(const std::string& file, const MpcdiRegionOut& r) {
         throw CalibrationError(file, where + " xSize", "the region's size must be positive");
 }
 
-// The warp grid as the file stores it: (u, v, error), NaN points (NaN, NaN, 1) as §2.5.1.1 says.
+// The warp grid as the file stores it: (u, v, error), NaN points (NaN, NaN, 1) as VESA MPCDI v2.0 (2015) says.
 PfmImage warp_pfm(const MpcdiRegionOut& r, const WarpFileFrame& frame) {
     const WarpGrid& g = r.warp.grid;
     PfmImage img{g.columns, g.rows, 3, std::vector<float>(g.uv.size() * 3)};

@@ -1,5 +1,5 @@
 #pragma once
-// Writes an MPCDI v2.0 package (VESA MPCDI v2.0 (2013) §3: a zip holding mpcdi.xml, one PFM warp
+// Writes an MPCDI v2.0 package (VESA MPCDI v2.0 (2015): a zip holding mpcdi.xml, one PFM warp
 // per region, PNG alpha and beta maps) from ProjectorWarps, under any reading switch
 // (calibration/mpcdi_reading.hpp), so a package written with switches S reads back, with S, to
 // the same ProjectorWarps. Used by the tests and by the ideal-dome generator in tools/.

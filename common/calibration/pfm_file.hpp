@@ -1,5 +1,5 @@
 #pragma once
-// Portable float map (PFM) files, as MPCDI stores its warp grids (VESA MPCDI v2.0 (2013) §2.5.1.1,
+// Portable float map (PFM) files, as MPCDI stores its warp grids (VESA MPCDI v2.0 (2015),
 // citing the netpbm PFM format): a text header "PF" (3 channels) or "Pf" (1), "W H", then a scale
 // whose sign gives the byte order of the 32-bit floats that follow (negative: little-endian), then
 // W*H*channels floats. netpbm stores the BOTTOM row first; PyMPCDI reads the first row as the top:

@@ -1,5 +1,5 @@
 #pragma once
-// An MPCDI warp file's grid (VESA MPCDI v2.0 (2013) §2.5.1.1: a PFM whose R and G hold (u, v), B
+// An MPCDI warp file's grid (VESA MPCDI v2.0 (2015): a PFM whose R and G hold (u, v), B
 // an error estimate, NaN where unknown) turned into projector_warp.hpp's WarpGrid under the
 // reading switches, and the checks that catch a file read with the wrong switches.
 #include <string>

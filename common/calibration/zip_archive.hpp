@@ -1,6 +1,6 @@
 #pragma once
 // Entries of a zip archive held in memory, through libzip (an MPCDI package is a flat zip, VESA
-// MPCDI v2.0 (2013) §3.1). Every error is a CalibrationError naming the archive and the entry.
+// MPCDI v2.0 (2015)). Every error is a CalibrationError naming the archive and the entry.
 #include <string>
 
 struct zip;
