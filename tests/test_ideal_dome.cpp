@@ -255,6 +255,15 @@ TEST(IdealDome, ConfigNamesAMissingRegion) {
         EXPECT_NE(what.find("channels[2].calibration.region"), std::string::npos) << what;
         EXPECT_NE(what.find("proj9"), std::string::npos) << what;
     }
+    const std::string file = "calibration/dome-4proj.mpcdi";
+    text.replace(text.find(file), file.size(), "calibration/none.mpcdi");
+    test::write_text(dir + "/missing.json", text);
+    try {
+        (void)load_cluster_config(dir + "/missing.json");
+        FAIL() << "a missing package was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("channels[0].calibration.mpcdi"), std::string::npos) << e.what();
+    }
 }
 
 TEST(IdealDome, GeneratorChecksItsOwnFileAndStitchesFrames) {

@@ -113,6 +113,7 @@ ChannelCalibration read_calibration(const JsonReader& k, const std::string& dire
                                     std::optional<CalibratedFrustum>& frustum) {
     ChannelCalibration cal;
     cal.mpcdi_file = resolve_path(directory, k.string("mpcdi"));
+    if (!fs::is_regular_file(cal.mpcdi_file)) k.fail("mpcdi", "file \"" + cal.mpcdi_file + "\" does not exist");
     cal.region = k.string("region");
     for (const char* name : {"pfm_rows", "v_origin", "coordinates", "warp_direction"})
         cal.reading.set(name, k.declared_choice(name));
