@@ -1,6 +1,7 @@
 # Included by fuzz/CMakeLists.txt in the clang++ project: cupola-fuzz-config
 # (fuzz_config_reader.cpp), the cluster-config reader with ASan, UBSan and libFuzzer's coverage
-# instrumentation. It needs common/config (reader, compiled-in schemas) and common/projection.
+# instrumentation. It needs common/config (reader, compiled-in schemas), common/projection and
+# common/calibration.
 find_package(nlohmann_json REQUIRED)
 include(${CUPOLA_ROOT}/configs/schema/embed.cmake)
 cupola_embed_config_schemas(${CMAKE_CURRENT_BINARY_DIR}/generated/config_schema_text.inc)
@@ -11,7 +12,8 @@ add_library(cupola_config_fuzz STATIC
 target_compile_options(cupola_config_fuzz PRIVATE -fsanitize=fuzzer-no-link)
 target_include_directories(cupola_config_fuzz PUBLIC ${CUPOLA_ROOT}/common
                            PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/generated)
-target_link_libraries(cupola_config_fuzz PUBLIC nlohmann_json::nlohmann_json glm::glm)
+# A channel's calibration opens its MPCDI package (common/calibration, calibration_fuzz.cmake).
+target_link_libraries(cupola_config_fuzz PUBLIC nlohmann_json::nlohmann_json glm::glm cupola_calibration_fuzz)
 
 add_executable(cupola-fuzz-config fuzz_config_reader.cpp)
 target_compile_options(cupola-fuzz-config PRIVATE -fsanitize=fuzzer)

@@ -10,6 +10,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "calibration/calibration_error.hpp"
+#include "calibration/mpcdi_package.hpp"
 #include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
 #include "projection/fisheye.hpp"
@@ -174,8 +176,54 @@ SinkConfig read_sinks(const JsonReader& r, const SinkConfig& base) {
     return c;
 }
 
+// The channel's MPCDI region: the package is opened to find the region, its raster and frustum.
+ChannelCalibration read_calibration(const JsonReader& k, const std::string& directory,
+                                    std::optional<CalibratedFrustum>& frustum) {
+    ChannelCalibration cal;
+    cal.mpcdi_file = resolve_path(directory, k.string("mpcdi"));
+    if (!fs::is_regular_file(cal.mpcdi_file)) k.fail("mpcdi", "file \"" + cal.mpcdi_file + "\" does not exist");
+    cal.region = k.string("region");
+    for (const char* name : {"pfm_rows", "v_origin", "coordinates", "warp_direction"})
+        cal.reading.set(name, k.declared_choice(name));
+    k.reject_unknown_keys();
+    try {
+        const MpcdiPackage package = MpcdiPackage::open(cal.mpcdi_file);
+        for (const auto& region : package.regions())
+            if (region.id == cal.region) {
+                cal.raster_width = region.x_resolution, cal.raster_height = region.y_resolution;
+                frustum = region.frustum;
+                return cal;
+            }
+    } catch (const CalibrationError& e) {
+        k.fail("mpcdi", e.what());
+    }
+    k.fail("region", "no region \"" + cal.region + "\" in " + cal.mpcdi_file);
+    return cal;
+}
+
+// Orientation and fov as the channel gives them, or the calibration's 3d-profile frustum.
+void read_channel_frustum(const JsonReader& r, const std::string& directory, ChannelConfig& c) {
+    std::optional<CalibratedFrustum> file_frustum;
+    if (auto k = r.optional_child("calibration")) c.calibration = read_calibration(*k, directory, file_frustum);
+    const bool own = r.has("orientation") || r.has("fov");
+    if (!own && c.calibration) {
+        if (!file_frustum)
+            r.fail("calibration",
+                   "region \"" + c.calibration->region + "\" has no frustum (2d profile): give orientation and fov");
+        c.orientation = file_frustum->orientation, c.fov = file_frustum->fov;
+        c.calibration->frustum_from_file = true;
+        return;
+    }
+    auto o = r.child("orientation");
+    c.orientation.yaw_deg = o.declared_number("yaw_deg");
+    c.orientation.pitch_deg = o.declared_number("pitch_deg");
+    c.orientation.roll_deg = o.declared_number("roll_deg");
+    o.reject_unknown_keys();
+    c.fov = read_fov(r.child("fov"));
+}
+
 ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Transport transport,
-                           const SinkConfig& cluster_sinks) {
+                           const std::string& directory, const SinkConfig& cluster_sinks) {
     ChannelConfig c;
     c.output = cluster_sinks;
     c.id = static_cast<int>(r.declared_integer("id"));
@@ -183,12 +231,7 @@ ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Tr
     for (char ch : c.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_'))
             r.fail("name", "\"" + c.name + "\" may hold only letters, digits, '-' and '_' (it names a folder)");
-    auto o = r.child("orientation");
-    c.orientation.yaw_deg = o.declared_number("yaw_deg");
-    c.orientation.pitch_deg = o.declared_number("pitch_deg");
-    c.orientation.roll_deg = o.declared_number("roll_deg");
-    o.reject_unknown_keys();
-    c.fov = read_fov(r.child("fov"));
+    read_channel_frustum(r, directory, c);
     c.width = static_cast<int>(r.declared_integer("width", default_w));
     c.height = static_cast<int>(r.declared_integer("height", default_h));
     if (transport == Transport::Unicast) {
@@ -291,14 +334,14 @@ InputConfig read_input(const JsonReader& in, const std::string& directory) {
 }
 
 std::vector<ChannelConfig> read_channels(const JsonReader& r, int default_w, int default_h, Transport transport,
-                                         const SinkConfig& cluster_sinks) {
+                                         const std::string& directory, const SinkConfig& cluster_sinks) {
     auto channels = r.array("channels");
     if (channels.empty()) r.fail("channels", "at least one channel is required");
     std::set<int> ids;
     std::set<std::string> names;
     std::vector<ChannelConfig> out;
     for (auto& ch : channels) {
-        ChannelConfig c = read_channel(ch, default_w, default_h, transport, cluster_sinks);
+        ChannelConfig c = read_channel(ch, default_w, default_h, transport, directory, cluster_sinks);
         if (!ids.insert(c.id).second) ch.fail("id", "channel id " + std::to_string(c.id) + " is used twice");
         if (!names.insert(c.name).second) ch.fail("name", "channel name \"" + c.name + "\" is used twice");
         out.push_back(c);
@@ -350,7 +393,7 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
     int default_w = 0, default_h = 0;
     cfg.output = read_output(r.section("output"), default_w, default_h);
     cfg.input = read_input(r.section("input"), cfg.directory);
-    cfg.channels = read_channels(r, default_w, default_h, cfg.network.transport, cfg.output.sink);
+    cfg.channels = read_channels(r, default_w, default_h, cfg.network.transport, cfg.directory, cfg.output.sink);
     r.reject_unknown_keys();
     check_coverage(cfg, file_in);
     return cfg;

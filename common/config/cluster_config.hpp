@@ -11,6 +11,7 @@
 
 #include <optional>
 
+#include "calibration/mpcdi_reading.hpp"
 #include "projection/channel_frustum.hpp"
 
 namespace cupola {
@@ -100,11 +101,22 @@ struct InputConfig {
 // show), "stop" (leave the show), "orbit_nearest" (orbit the nearest body), "none".
 const std::vector<std::string>& button_action_names();
 
+// The projector a channel feeds: a region of an MPCDI package (common/calibration/mpcdi_package).
+struct ChannelCalibration {
+    std::string mpcdi_file;  // resolved path
+    std::string region;
+    MpcdiReading reading;  // the switches where the standard is ambiguous
+    int raster_width = 0;  // the projector raster, from the package
+    int raster_height = 0;
+    bool frustum_from_file = false;  // the channel's orientation and fov are the region's frustum
+};
+
 struct ChannelConfig {
     int id = 0;
     std::string name;
     EulerDeg orientation;
     FovDeg fov;
+    std::optional<ChannelCalibration> calibration;
     int width = 512;
     int height = 512;
     std::string unicast_address;  // "host:port", used with the unicast transport
