@@ -4,9 +4,11 @@
 #   test_packaging.sh build     SOURCE BUILD WORK  cpack from the build tree into WORK, extracted into WORK/root
 #   test_packaging.sh contents  SOURCE BUILD WORK  control fields, maintainer scripts, the file list
 #   test_packaging.sh units     SOURCE BUILD WORK  the units and the user, read by systemd's own offline tools
-#   test_packaging.sh installed SOURCE BUILD WORK  the extracted programs find their data, configs and each other
+#   test_packaging.sh installed SOURCE BUILD WORK  the extracted programs run and read their installed data
+#   test_packaging.sh node      SOURCE BUILD WORK  the node config template starts a slave (port 47690)
+#   test_packaging.sh loopback  SOURCE BUILD WORK  the installed loopback runs an installed config (ports 47692-47693)
 # Needs the programs built (ctest runs after the build), dpkg-dev, file and systemd (scripts/setup.sh).
-# Opens UDP ports 47690-47693 on 127.0.0.1 (run ctest under flock /tmp/cupola-ctest.lock).
+# node and loopback open UDP ports 47690-47693 on 127.0.0.1 (run ctest under flock /tmp/cupola-ctest.lock).
 set -euo pipefail
 step="$1" src="$2" build="$3" work="$4"
 deb="$work/cupola.deb" root="$work/root"
@@ -203,13 +205,28 @@ check_installed_loopback() {
     ls "$l/out/dome/"frame_*.png >/dev/null 2>&1 || fail "no domemaster from the installed loopback: $(ls -R "$l/out")"
 }
 
-step_installed() {
-    export CUPOLA_CACHE_DIR="$work/cache"
+# What the installed programs run with: their own cache, no data folder override, no display.
+installed_environment() {
+    export CUPOLA_CACHE_DIR="$work/cache-$step"
     unset CUPOLA_DATA_DIR DISPLAY WAYLAND_DISPLAY
+}
+
+step_installed() {
+    installed_environment
     check_installed_data
+    echo "test_packaging installed: the extracted programs run and read their own data"
+}
+
+step_node() {
+    installed_environment
     check_node_config
+    echo "test_packaging node: the node config and a key made as documented start a slave"
+}
+
+step_loopback() {
+    installed_environment
     check_installed_loopback
-    echo "test_packaging installed: the extracted programs read their own data and configs and run a loopback"
+    echo "test_packaging loopback: the installed loopback-1ch.json ran on the installed master and slave"
 }
 
 case "$step" in
@@ -217,5 +234,7 @@ case "$step" in
     contents) step_contents ;;
     units) step_units ;;
     installed) step_installed ;;
-    *) fail "unknown step (build, contents, units, installed)" ;;
+    node) step_node ;;
+    loopback) step_loopback ;;
+    *) fail "unknown step (build, contents, units, installed, node, loopback)" ;;
 esac
