@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 
+#include "calibration/mpcdi_package.hpp"
 #include "image/frame_image.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
@@ -32,11 +33,22 @@ SlaveNode::SlaveNode(ClusterConfig cluster, int channel_id, SlaveOptions options
 
 namespace {
 
+// The channel's projector calibration (channels[].calibration), read once at start-up: the warp
+// and blend the output stage applies. None: the projector shows the channel render as it is.
+std::optional<ProjectorWarp> channel_warp(const ChannelConfig& channel) {
+    if (!channel.calibration) return std::nullopt;
+    const ChannelCalibration& c = *channel.calibration;
+    return MpcdiPackage::open(c.mpcdi_file).read_region(c.region, c.reading);
+}
+
 // The output surface and its EGL context (headless, an X11 window or a KMS output, from the
-// channel's sinks), named in the log as soon as it is up.
+// channel's sinks), named in the log as soon as it is up. A live output shows the projector
+// raster: the calibration's, else the channel render's size.
 struct LoggedSurface {
-    LoggedSurface(const ChannelConfig& channel, int device)
-        : surface(channel.output, device, channel.width, channel.height), context(surface.egl()) {
+    LoggedSurface(const ChannelConfig& channel, int device, const std::optional<ProjectorWarp>& warp)
+        : surface(channel.output, device, warp ? warp->raster_width : channel.width,
+                  warp ? warp->raster_height : channel.height),
+          context(surface.egl()) {
         const auto& i = context.info();
         spdlog::info("slave {}: EGL {} (device {} of {}), {} / {}", channel.name, i.platform, i.device_index,
                      i.device_count, i.renderer, i.version);
@@ -93,10 +105,11 @@ struct SlaveNode::Loop {
           channel(n.channel_),
           key(load_key_file(n.cluster_.key_file, n.cluster_.network.strict_key_permissions)),
           scene(load_scene_config(n.cluster_.scene_file)),
-          gl(channel, n.options_.egl_device),
+          warp(channel_warp(channel)),
+          gl(channel, n.options_.egl_device, warp),
           renderer(n.cluster_, channel, scene),
-          output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, std::nullopt,
-                 channel.width, channel.height),
+          output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, warp, channel.width,
+                 channel.height),
           session(new_session_nonce()),
           wire(open_slave_endpoint(n.cluster_, channel, key, session)),
           master(master_report_address(n.cluster_)),
@@ -121,6 +134,7 @@ struct SlaveNode::Loop {
     const ChannelConfig& channel;
     const AuthKey key;
     const SceneConfig scene;
+    const std::optional<ProjectorWarp> warp;
     LoggedSurface gl;
     SceneRenderer renderer;
     ProjectorOutput output;
