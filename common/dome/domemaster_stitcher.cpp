@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "calibration/mpcdi_package.hpp"
+#include "dome/projector_frame_stitcher.hpp"
 #include "projection/fisheye.hpp"
 
 namespace cupola {
@@ -229,7 +231,7 @@ struct FrameChannels {
 // Reports where a channel image disagrees with the config or its own file name (it is used anyway).
 void check_channel_image(const ChannelConfig& ch, uint64_t frame, const std::string& path, const Image& im,
                          const FrameMetadata& meta, const std::string& label, StitchReport& report) {
-    if (im.width != ch.width || im.height != ch.height)
+    if (!ch.calibration && (im.width != ch.width || im.height != ch.height))
         report.problems.push_back(label + ": " + path + " is " + std::to_string(im.width) + "x" +
                                   std::to_string(im.height) + " but channel " + ch.name + " is " +
                                   std::to_string(ch.width) + "x" + std::to_string(ch.height) +
@@ -241,10 +243,17 @@ void check_channel_image(const ChannelConfig& ch, uint64_t frame, const std::str
                                   ", the config says " + ch.name + " is channel " + std::to_string(ch.id));
 }
 
+// A calibrated channel's file is its projector frame: back into the channel's render space.
+Image channel_space(const ChannelConfig& ch, const std::optional<ProjectorWarp>& warp, Image im) {
+    if (!warp) return im;
+    return projector_frame_to_channel(*warp, im, ch.width, ch.height);
+}
+
 // Reads frame `frame` of every channel; a channel without the frame or with an unreadable file is
-// reported and left out.
+// reported and left out. warps[i]: channel i's calibration, if it has one.
 FrameChannels read_frame_channels(const ClusterConfig& config, const std::vector<ChannelFiles>& files, uint64_t frame,
-                                  const std::string& label, StitchReport& report) {
+                                  const std::vector<std::optional<ProjectorWarp>>& warps, const std::string& label,
+                                  StitchReport& report) {
     FrameChannels out;
     for (size_t i = 0; i < config.channels.size(); ++i) {
         const auto& ch = config.channels[i];
@@ -257,11 +266,12 @@ FrameChannels read_frame_channels(const ClusterConfig& config, const std::vector
         Image im;
         try {
             im = read_image_radiance(it->second, &meta);
+            check_channel_image(ch, frame, it->second, im, meta, label, report);
+            im = channel_space(ch, warps[i], std::move(im));
         } catch (const std::exception& e) {
             report.problems.push_back(label + ": channel " + ch.name + ": " + e.what());
             continue;
         }
-        check_channel_image(ch, frame, it->second, im, meta, label, report);
         out.frusta.emplace_back(ch.orientation, ch.fov, im.width, im.height);
         out.images.push_back(std::move(im));
         out.metas.push_back(std::move(meta));
@@ -300,6 +310,35 @@ std::vector<std::string> write_dome_frame(const ClusterConfig& config, const std
     return write_frame(out_dir, dome, out_meta, formats, exposure);
 }
 
+// Every calibrated channel's projector warp; a projector frame is stitched from its EXR, the light
+// the projector sends (linear, after the blend): its PNG is encoded for the projector's gamma.
+std::vector<std::optional<ProjectorWarp>> channel_warps(const ClusterConfig& config, std::vector<ChannelFiles>& files,
+                                                        StitchReport& report) {
+    std::vector<std::optional<ProjectorWarp>> warps;
+    for (size_t i = 0; i < config.channels.size(); ++i) {
+        const auto& c = config.channels[i].calibration;
+        warps.push_back(c ? std::optional(MpcdiPackage::open(c->mpcdi_file).read_region(c->region, c->reading))
+                          : std::nullopt);
+        if (!c) continue;
+        for (auto it = files[i].by_frame.begin(); it != files[i].by_frame.end();)
+            if (fs::path(it->second).extension() != ".exr") {
+                report.problems.push_back(it->second + ": a projector frame is stitched from its EXR (linear light)");
+                it = files[i].by_frame.erase(it);
+            } else {
+                ++it;
+            }
+    }
+    return warps;
+}
+
+// Calibrated channels carry their blend in their light: summed. Plain renders: feathered.
+Image stitch_frame(const ClusterConfig& config, const FrameChannels& channels, bool calibrated, int size) {
+    std::vector<const Image*> ptrs;
+    for (const auto& im : channels.images) ptrs.push_back(&im);
+    return calibrated ? sum_domemaster(config.dome, channels.frusta, ptrs, size)
+                      : stitch_domemaster(config.dome, channels.frusta, ptrs, size);
+}
+
 }  // namespace
 
 StitchReport stitch_run_directory(const ClusterConfig& config, const std::string& in_dir, const std::string& out_dir,
@@ -317,18 +356,18 @@ StitchReport stitch_run_directory(const ClusterConfig& config, const std::string
     }
     std::vector<ChannelFiles> files;
     const std::set<uint64_t> frames = frames_to_stitch(config, in_dir, only_frame, files, report);
+    const auto warps = channel_warps(config, files, report);
+    const bool calibrated = std::any_of(warps.begin(), warps.end(), [](const auto& w) { return w.has_value(); });
     const std::vector<std::string> formats = dome_formats(config);
     for (uint64_t frame : frames) {
         const std::string label = frame_label(frame);
-        const FrameChannels channels = read_frame_channels(config, files, frame, label, report);
+        const FrameChannels channels = read_frame_channels(config, files, frame, warps, label, report);
         if (channels.images.empty()) {
             report.problems.push_back(label + ": no readable channel image, nothing written");
             continue;
         }
         check_snapshot_hashes(channels, label, report);
-        std::vector<const Image*> ptrs;
-        for (const auto& im : channels.images) ptrs.push_back(&im);
-        const Image dome = stitch_domemaster(config.dome, channels.frusta, ptrs, size);
+        const Image dome = stitch_frame(config, channels, calibrated, size);
         const auto written = write_dome_frame(config, out_dir, frame, dome, channels.metas.front(), formats);
         report.written.insert(report.written.end(), written.begin(), written.end());
         report.frames.push_back(frame);

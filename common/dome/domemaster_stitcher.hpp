@@ -44,7 +44,9 @@ struct StitchReport {
 // name "dome", with the output exposure of the config. only_frame: just that frame. size 0: the
 // config's domemaster_size. Every frame found in any channel is stitched from what exists; each
 // missing channel frame, unreadable file, size mismatch or snapshot-hash disagreement is reported
-// in problems. Throws std::runtime_error only when an output cannot be written.
+// in problems. A calibrated channel's files are its projector frames: their EXRs are put back
+// into the channel's frustum through its calibration and summed (dome/projector_frame_stitcher.hpp).
+// Throws std::runtime_error only when an output cannot be written.
 StitchReport stitch_run_directory(const ClusterConfig& config, const std::string& in_dir, const std::string& out_dir,
                                   std::optional<uint64_t> only_frame = std::nullopt, int size = 0);
 
