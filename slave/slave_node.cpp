@@ -7,7 +7,7 @@
 #include <fstream>
 #include <optional>
 
-#include "calibration/mpcdi_package.hpp"
+#include "calibration/channel_warp.hpp"
 #include "image/frame_image.hpp"
 #include "net/key_file.hpp"
 #include "net/wire_endpoint.hpp"
@@ -37,8 +37,7 @@ namespace {
 // and blend the output stage applies. None: the projector shows the channel render as it is.
 std::optional<ProjectorWarp> channel_warp(const ChannelConfig& channel) {
     if (!channel.calibration) return std::nullopt;
-    const ChannelCalibration& c = *channel.calibration;
-    return MpcdiPackage::open(c.mpcdi_file).read_region(c.region, c.reading);
+    return load_channel_warp(*channel.calibration);
 }
 
 // The output surface and its EGL context (headless, an X11 window or a KMS output, from the

@@ -5,7 +5,8 @@
 //  - physically: the projector frames' light, where the ideal projectors of the generator throw it
 //    onto the dome (common/calibration/projector_stitch), summed, is flat within 2 %;
 //  - through the calibration: cupola-loopback's own domemaster of the projector frames
-//    (common/dome/projector_frame_stitcher) is flat too, and the grid pattern's frames agree.
+//    (common/dome/projector_frame_stitcher) is flat too.
+// And a channel can feed a Paul Bourke mesh (a spherical mirror) instead of an MPCDI region.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
@@ -13,11 +14,16 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
+#include "calibration/channel_warp.hpp"
 #include "calibration/ideal_dome.hpp"
+#include "calibration/reference_warp.hpp"
+#include "config/config_error.hpp"
 #include "calibration/projector_stitch.hpp"
 #include "image/frame_image.hpp"
 #include "projection/fisheye.hpp"
+#include "support/cluster_fixture.hpp"
 #include "support/loopback_run.hpp"
 
 using namespace cupola;
@@ -110,4 +116,61 @@ TEST(CalibratedDome, WhiteFieldThroughFourWarpedBlendedProjectorsLightsTheDomeEv
     EXPECT_LT(stitched.max, 1.03);
     std::printf("white field on the dome: physical %.4f..%.4f, through the calibration %.4f..%.4f\n", physical.min,
                 physical.max, stitched.min, stitched.max);
+}
+
+namespace {
+
+// A 5x5 Bourke mesh over a 16:10 screen showing the middle of the channel render.
+std::string small_bourke_mesh() {
+    std::ostringstream s;
+    s << "2\n5 5\n";
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i) {
+            const double x = 1.6 * (-1.0 + 0.5 * i), y = 1.0 - 0.5 * j;
+            s << x << " " << y << " " << 0.25 + 0.5 * i / 4.0 << " " << 0.25 + 0.5 * (4 - j) / 4.0 << " 1\n";
+        }
+    return s.str();
+}
+
+// dome-4ch.json whose first channel feeds a spherical-mirror projector through `calibration`.
+std::string bourke_cluster(const std::string& dir, const nlohmann::json& calibration) {
+    nlohmann::json c = nlohmann::json::parse(test::read_text(test::write_test_cluster(dir, 47950, 64, 64)));
+    c["channels"][0]["calibration"] = calibration;
+    test::write_text(dir + "/bourke.json", c.dump(2));
+    return dir + "/bourke.json";
+}
+
+void expect_config_error(const std::string& file, const std::string& field) {
+    try {
+        load_cluster_config(file);
+        ADD_FAILURE() << "no error naming " << field;
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+
+TEST(CalibratedDome, ChannelFeedsABourkeMeshAtTheConfiguredRasterAndBadReferencesAreNamed) {
+    const std::string dir = test::scratch_dir("calibrated_bourke");
+    test::write_text(dir + "/mirror.data", small_bourke_mesh());
+    const auto cfg = load_cluster_config(
+        bourke_cluster(dir, {{"bourke", "mirror.data"}, {"raster_width", 80}, {"raster_height", 50}}));
+    const ChannelConfig& ch = cfg.channels[0];
+    ASSERT_TRUE(ch.calibration);
+    EXPECT_FALSE(ch.calibration->frustum_from_file);
+    const ProjectorWarp warp = load_channel_warp(*ch.calibration);
+    EXPECT_EQ(warp.raster_width, 80);
+    EXPECT_EQ(warp.raster_height, 50);
+    // The screen's centre shows the render's centre (the mesh maps the middle half of it).
+    const glm::dvec2 uv = warp_uv_at(warp, 40.0, 25.0);
+    EXPECT_NEAR(uv.x, 0.5, 1e-6);
+    EXPECT_NEAR(uv.y, 0.5, 1e-6);
+
+    expect_config_error(bourke_cluster(dir, {{"bourke", "mirror.data"}, {"raster_height", 50}}), "raster_width");
+    expect_config_error(bourke_cluster(dir, {{"bourke", "absent.data"}, {"raster_width", 8}, {"raster_height", 5}}),
+                        "calibration.bourke");
+    test::write_text(dir + "/broken.data", "2\n5 5\n0 0 0.5 0.5 1\n");
+    expect_config_error(bourke_cluster(dir, {{"bourke", "broken.data"}, {"raster_width", 8}, {"raster_height", 5}}),
+                        "broken.data");
 }

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "calibration/calibration_error.hpp"
+#include "calibration/bourke_mesh.hpp"
 #include "calibration/mpcdi_package.hpp"
 #include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
@@ -177,8 +178,28 @@ SinkConfig read_sinks(const JsonReader& r, const SinkConfig& base) {
 }
 
 // The channel's MPCDI region: the package is opened to find the region, its raster and frustum.
+// A Paul Bourke mesh: the raster size is the config's (the file has none); no frustum.
+ChannelCalibration read_bourke_calibration(const JsonReader& k, const std::string& directory) {
+    ChannelCalibration cal;
+    cal.bourke_file = resolve_path(directory, k.string("bourke"));
+    if (!fs::is_regular_file(cal.bourke_file)) k.fail("bourke", "file \"" + cal.bourke_file + "\" does not exist");
+    cal.raster_width = static_cast<int>(k.required_integer("raster_width"));
+    cal.raster_height = static_cast<int>(k.required_integer("raster_height"));
+    if (k.has("mpcdi") || k.has("region")) k.fail("bourke", "give either bourke or mpcdi and region, not both");
+    k.reject_unknown_keys();
+    try {
+        read_bourke_mesh(cal.bourke_file, cal.raster_width, cal.raster_height);
+    } catch (const CalibrationError& e) {
+        k.fail("bourke", e.what());
+    }
+    return cal;
+}
+
+// The channel's MPCDI region (the package is opened to find the region, its raster and frustum)
+// or its Bourke mesh.
 ChannelCalibration read_calibration(const JsonReader& k, const std::string& directory,
                                     std::optional<CalibratedFrustum>& frustum) {
+    if (k.has("bourke")) return read_bourke_calibration(k, directory);
     ChannelCalibration cal;
     cal.mpcdi_file = resolve_path(directory, k.string("mpcdi"));
     if (!fs::is_regular_file(cal.mpcdi_file)) k.fail("mpcdi", "file \"" + cal.mpcdi_file + "\" does not exist");

@@ -101,12 +101,14 @@ struct InputConfig {
 // show), "stop" (leave the show), "orbit_nearest" (orbit the nearest body), "none".
 const std::vector<std::string>& button_action_names();
 
-// The projector a channel feeds: a region of an MPCDI package (common/calibration/mpcdi_package).
+// The projector a channel feeds: a region of an MPCDI package (common/calibration/mpcdi_package)
+// or a Paul Bourke mesh (common/calibration/bourke_mesh); read by calibration/channel_warp.hpp.
 struct ChannelCalibration {
-    std::string mpcdi_file;  // resolved path
+    std::string mpcdi_file;  // resolved path; empty for a Bourke mesh
     std::string region;
-    MpcdiReading reading;  // the switches where the standard is ambiguous
-    int raster_width = 0;  // the projector raster, from the package
+    std::string bourke_file;  // resolved path of a Paul Bourke mesh, instead of an MPCDI region
+    MpcdiReading reading;     // the switches where the standard is ambiguous
+    int raster_width = 0;     // the projector raster, from the package (a Bourke mesh: from the config)
     int raster_height = 0;
     bool frustum_from_file = false;  // the channel's orientation and fov are the region's frustum
 };

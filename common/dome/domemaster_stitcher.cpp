@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "calibration/mpcdi_package.hpp"
+#include "calibration/channel_warp.hpp"
 #include "dome/projector_frame_stitcher.hpp"
 #include "projection/fisheye.hpp"
 
@@ -317,8 +317,7 @@ std::vector<std::optional<ProjectorWarp>> channel_warps(const ClusterConfig& con
     std::vector<std::optional<ProjectorWarp>> warps;
     for (size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i].calibration;
-        warps.push_back(c ? std::optional(MpcdiPackage::open(c->mpcdi_file).read_region(c->region, c->reading))
-                          : std::nullopt);
+        warps.push_back(c ? std::optional(load_channel_warp(*c)) : std::nullopt);
         if (!c) continue;
         for (auto it = files[i].by_frame.begin(); it != files[i].by_frame.end();)
             if (fs::path(it->second).extension() != ".exr") {
