@@ -144,7 +144,9 @@ TEST(SwapLock, NoSlavePresentsAFrameBeforeEveryLiveSlaveIsReady) {
         for (const auto& [f, s] : log) {
             EXPECT_NE(s.cause, "unlocked") << f;
             // The slave's own ready time is the one it reported.
-            if (ready.count(f) && ready.at(f).count(id)) EXPECT_EQ(s.ready_ns, ready.at(f).at(id)) << f;
+            if (ready.count(f) && ready.at(f).count(id)) {
+                EXPECT_EQ(s.ready_ns, ready.at(f).at(id)) << f;
+            }
         }
     }
     expect_no_present_before_every_ready(ready, logs);
@@ -202,8 +204,9 @@ TEST(SwapLock, KilledSlaveDelaysThePresentByAtMostTheChannelTimeout) {
         const PresentLog& log = logs.at(ch.id);
         // (a slow first render may have had it dropped too, for a frame or two at the start)
         for (const auto& [f, channels] : ready)
-            if (channels.count(ch.id))
+            if (channels.count(ch.id)) {
                 EXPECT_TRUE(log.count(f)) << ch.name << " reported frame " << f << ", never showed it";
+            }
         EXPECT_TRUE(log.count(frames - 1)) << ch.name;
         for (const auto& [f, s] : log) {
             uint64_t last_ready = 0;
