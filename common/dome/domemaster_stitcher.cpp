@@ -61,6 +61,17 @@ void check_image(const ChannelFrustum& f, const Image& im, size_t index) {
                                     std::to_string(f.width()) + "x" + std::to_string(f.height()));
 }
 
+// The size, and one image per channel of its frustum's size (null: none).
+void check_inputs(const char* what, const std::vector<ChannelFrustum>& channels,
+                  const std::vector<const Image*>& images, int size) {
+    check_size(size);
+    if (channels.size() != images.size())
+        throw std::invalid_argument(std::string(what) + ": " + std::to_string(channels.size()) + " channels but " +
+                                    std::to_string(images.size()) + " images");
+    for (size_t i = 0; i < channels.size(); ++i)
+        if (images[i]) check_image(channels[i], *images[i], i);
+}
+
 }  // namespace
 
 void sample_bilinear(const Image& image, double x, double y, float out[4]) {
@@ -80,12 +91,7 @@ void sample_bilinear(const Image& image, double x, double y, float out[4]) {
 
 Image stitch_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
                         const std::vector<const Image*>& images, int size, double feather_px) {
-    check_size(size);
-    if (channels.size() != images.size())
-        throw std::invalid_argument("stitch_domemaster: " + std::to_string(channels.size()) + " channels but " +
-                                    std::to_string(images.size()) + " images");
-    for (size_t i = 0; i < channels.size(); ++i)
-        if (images[i]) check_image(channels[i], *images[i], i);
+    check_inputs("stitch_domemaster", channels, images, size);
 
     const FisheyeMapping fish(dome.fov_deg);
     Image out = blank(size);
@@ -126,6 +132,30 @@ Image stitch_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum
             float* o = out.pixel(x, y);
             for (int c = 0; c < 3; ++c) o[c] = static_cast<float>(acc[c]);
             o[3] = 1.0f;
+        }
+    });
+    return out;
+}
+
+Image sum_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
+                     const std::vector<const Image*>& images, int size) {
+    check_inputs("sum_domemaster", channels, images, size);
+    const FisheyeMapping fish(dome.fov_deg);
+    Image out = blank(size);
+    for_rows(size, [&](int y) {
+        for (int x = 0; x < size; ++x) {
+            const auto dir = fish.uv_to_direction(FisheyeMapping::pixel_to_uv(glm::dvec2(x + 0.5, y + 0.5), size));
+            if (!dir) continue;  // outside the circle: black, alpha 0
+            float* o = out.pixel(x, y);
+            for (size_t i = 0; i < channels.size(); ++i) {
+                const auto p = images[i] ? channels[i].dome_direction_to_pixel(*dir) : std::nullopt;
+                if (!p || channels[i].edge_distance_px(*p) < 0.0) continue;
+                float s[4];
+                sample_bilinear(*images[i], p->x, p->y, s);
+                if (s[3] <= 0.0f) continue;
+                for (int c = 0; c < 3; ++c) o[c] += s[c];
+                o[3] = 1.0f;
+            }
         }
     });
     return out;

@@ -29,6 +29,12 @@ void sample_bilinear(const Image& image, double x, double y, float out_rgba[4]);
 Image stitch_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
                         const std::vector<const Image*>& images, int size, double feather_px = 8.0);
 
+// Like stitch_domemaster, but the channels that see a direction are summed, unweighted: for
+// images that carry their blend in their light (projector frames put back into their channel's
+// render space, dome/projector_frame_stitcher.hpp). A channel pixel with alpha 0 adds nothing.
+Image sum_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
+                     const std::vector<const Image*>& images, int size);
+
 // One channel alone remapped into fisheye space: alpha 1 where the channel covers the direction
 // (channel.contains), black with alpha 0 elsewhere.
 Image remap_channel_to_fisheye(const DomeConfig& dome, const ChannelFrustum& channel, const Image& image, int size);

@@ -5,7 +5,6 @@
 
 #include "calibration/mesh_resampling.hpp"
 #include "dome/domemaster_stitcher.hpp"
-#include "projection/fisheye.hpp"
 
 namespace cupola {
 
@@ -50,30 +49,6 @@ Image projector_frame_to_channel(const ProjectorWarp& warp, const Image& project
             float* o = out.pixel(x, y);
             sample_bilinear(projector_frame, p.x, p.y, o);
             o[3] = 1.0f;
-        }
-    return out;
-}
-
-Image sum_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
-                     const std::vector<const Image*>& images, int size) {
-    const FisheyeMapping fisheye(dome.fov_deg);
-    Image out;
-    out.width = out.height = size;
-    out.rgba.assign(static_cast<size_t>(size) * size * 4, 0.0f);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const auto dir = fisheye.uv_to_direction(FisheyeMapping::pixel_to_uv({x + 0.5, y + 0.5}, size));
-            if (!dir) continue;
-            float* o = out.pixel(x, y);
-            for (size_t c = 0; c < channels.size(); ++c) {
-                const auto px = images[c] ? channels[c].dome_direction_to_pixel(*dir) : std::nullopt;
-                if (!px || !channels[c].contains(*dir)) continue;
-                float s[4];
-                sample_bilinear(*images[c], px->x, px->y, s);
-                if (s[3] <= 0.0f) continue;
-                for (int k = 0; k < 3; ++k) o[k] += s[k];
-                o[3] = 1.0f;
-            }
         }
     return out;
 }

@@ -8,7 +8,8 @@
 // mesh_resampling.hpp) gives, for every channel pixel, the projector pixel that shows it. Each
 // projector frame is resampled that way into its channel's frustum, and the channels are SUMMED
 // on the dome: the blend (alpha) is already in the light each projector sends, so overlapping
-// projectors add up to the sky where the blend is right, and show a bright or dark seam where not.
+// projectors add up to the sky where the blend is right, and show a bright or dark seam where not
+// (sum_domemaster, dome/domemaster_stitcher.hpp).
 #include <vector>
 
 #include "calibration/projector_warp.hpp"
@@ -21,10 +22,5 @@ namespace cupola {
 // (channel_width x channel_height): alpha 1 where some projector pixel shows the channel pixel.
 Image projector_frame_to_channel(const ProjectorWarp& warp, const Image& projector_frame, int channel_width,
                                  int channel_height);
-
-// The domemaster (size x size) of the light summed over the channels that see each direction
-// (images[i] in channels[i]'s render space, alpha 0 where it shows nothing; null: skipped).
-Image sum_domemaster(const DomeConfig& dome, const std::vector<ChannelFrustum>& channels,
-                     const std::vector<const Image*>& images, int size);
 
 }  // namespace cupola
