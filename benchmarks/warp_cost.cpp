@@ -50,8 +50,10 @@ ProjectorWarp dome_warp(int w, int h, int columns, int rows) {
     warp.grid.columns = columns;
     warp.grid.rows = rows;
     for (int j = 0; j < rows; ++j)
-        for (int i = 0; i < columns; ++i)
-            warp.grid.uv.push_back(dome_uv((i + 0.5) * w / columns, (j + 0.5) * h / rows, w, h));
+        for (int i = 0; i < columns; ++i) {
+            const glm::dvec2 p = grid_point_pixel(i, j, columns, rows, w, h);
+            warp.grid.uv.push_back(dome_uv(p.x, p.y, w, h));
+        }
     warp.alpha = BlendMap{w, h, std::vector<float>(static_cast<size_t>(w) * h)};
     warp.beta = BlendMap{w, h, std::vector<float>(static_cast<size_t>(w) * h, 0.02f)};
     for (int y = 0; y < h; ++y)

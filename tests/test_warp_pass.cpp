@@ -62,8 +62,10 @@ ProjectorWarp grid_warp(int w, int h, int columns, int rows, F uv_at_pixel) {
     warp.grid.columns = columns;
     warp.grid.rows = rows;
     for (int j = 0; j < rows; ++j)
-        for (int i = 0; i < columns; ++i)
-            warp.grid.uv.push_back(uv_at_pixel((i + 0.5) * w / columns, (j + 0.5) * h / rows));
+        for (int i = 0; i < columns; ++i) {
+            const glm::dvec2 p = grid_point_pixel(i, j, columns, rows, w, h);
+            warp.grid.uv.push_back(uv_at_pixel(p.x, p.y));
+        }
     return warp;
 }
 

@@ -22,13 +22,7 @@ glm::dvec3 mean_direction(const std::vector<glm::dvec3>& dirs, const std::string
         throw std::invalid_argument("projector '" + id + "': no footprint on the dome to fit a channel frustum to");
     return glm::normalize(sum);
 }
-}  // namespace
 
-glm::dvec2 grid_point_pixel(int i, int j, int columns, int rows, int raster_width, int raster_height) {
-    return {(i + 0.5) * raster_width / columns, (j + 0.5) * raster_height / rows};
-}
-
-namespace {
 // The four tangents (left, right, up, down) that hold every footprint direction in a frustum
 // aimed at `aim`; nothing when a direction is within 5 degrees of the frustum's side plane.
 std::optional<glm::dvec4> footprint_tangents(const EulerDeg& aim, const std::vector<glm::dvec3>& footprint) {

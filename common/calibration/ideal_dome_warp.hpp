@@ -22,9 +22,6 @@ CalibratedFrustum fit_channel_frustum(const IdealProjector& projector,
 // that lights the screen (where the screen's edge is locally straight at the grid's scale).
 std::vector<bool> needed_grid_points(const IdealProjector& projector, int columns, int rows);
 
-// Raster position of a grid point in fill layout (projector_warp.hpp).
-glm::dvec2 grid_point_pixel(int i, int j, int columns, int rows, int raster_width, int raster_height);
-
 // Dome directions of the needed grid points (empty optional where a point is not needed).
 std::vector<glm::dvec3> needed_grid_directions(const IdealProjector& projector, int columns, int rows);
 

@@ -28,6 +28,11 @@
 
 namespace cupola {
 
+// Raster position of grid point (i, j) in fill layout (above): the one formula of the contract.
+inline glm::dvec2 grid_point_pixel(int i, int j, int columns, int rows, int raster_width, int raster_height) {
+    return {(i + 0.5) * raster_width / columns, (j + 0.5) * raster_height / rows};
+}
+
 struct WarpGrid {
     int columns = 0;
     int rows = 0;

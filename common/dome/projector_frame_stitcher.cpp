@@ -20,7 +20,7 @@ NodeMesh inverse_mesh(const ProjectorWarp& warp) {
     for (int j = 0; j < g.rows; ++j)
         for (int i = 0; i < g.columns; ++i) {
             mesh.position.push_back(g.uv[static_cast<size_t>(j) * g.columns + i]);
-            mesh.value.emplace_back((i + 0.5) * warp.raster_width / g.columns, (j + 0.5) * warp.raster_height / g.rows,
+            mesh.value.emplace_back(grid_point_pixel(i, j, g.columns, g.rows, warp.raster_width, warp.raster_height),
                                     0.0);
         }
     return mesh;
