@@ -145,6 +145,44 @@ glm::dvec3 ProductionAtmosphere::to_xyz(const vec3& f) const {
     return glm::dvec3(atm_samples_to_xyz(f, sampler2D{&color_weights_}, static_cast<float>(color_weights_.width)));
 }
 
+const SkyViewTable& ProductionAtmosphere::sky_view_table(float d_m, float mu_s) const {
+    std::lock_guard<std::mutex> lock(sky_view_cache_->mutex);
+    auto& slot = sky_view_cache_->tables[{d_m, mu_s}];
+    if (!slot) slot = std::make_unique<SkyViewTable>(build_sky_view_table(*this, d_m, mu_s));
+    return *slot;
+}
+
+namespace {
+// Linear sRGB -> CIE XYZ: the exact inverse of xyz_to_linear_srgb (star_color.glsl).
+glm::dvec3 linear_srgb_to_xyz(const glm::dvec3& rgb) {
+    static const glm::dmat3 inverse = glm::inverse(
+        glm::transpose(glm::dmat3(3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570)));
+    return inverse * rgb;
+}
+}  // namespace
+
+// A sky query the way the GPU's look-up pass answers it (shaders/atmosphere_lookup.frag): the
+// in-scatter from the table, plus the ground's albedo times the table's white-ground radiance.
+ProductionRadiance ProductionAtmosphere::sky_from_table(const AtmosphereRayStart& st, float d_m, const vec3& v,
+                                                        const vec3& sun) const {
+    ProductionRadiance out;
+    out.in_atmosphere = st.valid;
+    if (!st.valid) return out;
+    const vec3 c_hat(0.0f, 0.0f, -1.0f);
+    const SkyViewTable& t = sky_view_table(d_m, -dot(sun, c_hat));
+    const bool ground = atm_ray_hits_ground(gpu_, st.r_m, st.mu);
+    const vec2 uv = atm_sky_view_pixel_uv(gpu_, d_m, v, c_hat, sun, st, ground, t.size());
+    vec3 rgb = atm_sky_view_inscatter(gpu_, sampler2D{&t.parts[0]}, sampler2D{&t.parts[1]}, uv, st.nu);
+    const vec3 third = vec3(textureLod(sampler2D{&t.parts[2]}, uv, 0.0));
+    if (ground) rgb = rgb + gpu_.ground_albedo * third;
+    out.rgb = glm::dvec3(rgb);
+    out.xyz = linear_srgb_to_xyz(out.rgb);
+    out.luminance = out.xyz.y;
+    out.transmittance = ground ? glm::dvec3(0.0) : glm::dvec3(third);
+    out.hits_ground = ground;
+    return out;
+}
+
 ProductionRadiance ProductionAtmosphere::sky(const SkyQuery& q) const {
     const double d = params_.bottom_radius + std::max(q.altitude_m, kMinCameraAltitude);
     const double tv = glm::radians(q.view_zenith_deg), ts = glm::radians(q.sun_zenith_deg);
@@ -154,6 +192,7 @@ ProductionRadiance ProductionAtmosphere::sky(const SkyQuery& q) const {
     const vec3 sun(static_cast<float>(std::sin(ts) * std::cos(az)), static_cast<float>(std::sin(ts) * std::sin(az)),
                    static_cast<float>(std::cos(ts)));
     const AtmosphereRayStart st = atm_ray_start(gpu_, static_cast<float>(d), v, vec3(0.0f, 0.0f, -1.0f), sun);
+    if (quality_.sky_view) return sky_from_table(st, static_cast<float>(d), v, sun);
     ProductionRadiance out;
     vec3 t;
     const vec3 f = radiance(st, -1.0f, &t);

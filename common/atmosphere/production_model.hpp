@@ -9,12 +9,17 @@
 // (atm_samples_to_xyz, production_color.hpp): photometric linear sRGB, luminance in cd m^-2 --
 // the same units as the reference integrator.
 #include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
 
 #include "atmosphere/atmosphere_parameters.hpp"
 #include "atmosphere/production_color.hpp"
 #include "atmosphere/production_quality.hpp"
 #include "atmosphere/production_tables.hpp"
 #include "atmosphere/reference_integrator.hpp"
+#include "atmosphere/sky_view_table.hpp"
 #include "shading/shared_shading.hpp"
 
 namespace cupola::atmosphere {
@@ -52,8 +57,12 @@ public:
     // Per unit solar irradiance at the sample wavelengths -> CIE XYZ (Y in cd m^-2).
     glm::dvec3 to_xyz(const glm::vec3& f) const;
 
-    // The same query as ReferenceIntegrator::sky (the ground's albedo from the parameters).
+    // The same query as ReferenceIntegrator::sky (the ground's albedo from the parameters). With
+    // a sky-view quality the answer is looked up in the table for the query's camera and Sun, as
+    // the GPU looks its pixels up.
     ProductionRadiance sky(const SkyQuery& query) const;
+    // The sky-view table for a camera distance and Sun zenith cosine (built once, then kept).
+    const SkyViewTable& sky_view_table(float d_m, float mu_s) const;
 
     // Per unit solar irradiance at the sample wavelengths, for a ray in the shared code's terms;
     // t_geometry < 0: no scene geometry. Adds the lit ground when the ray ends on it.
@@ -64,12 +73,20 @@ public:
                        shading::EclipseRay shadow) const;
 
 private:
+    ProductionRadiance sky_from_table(const shading::AtmosphereRayStart& st, float d_m, const glm::vec3& v,
+                                      const glm::vec3& sun) const;
+
     AtmosphereParameters params_;
     ProductionQuality quality_;
     shading::AtmosphereParams gpu_{};
     shading::AtmosphereAnalyticFit fit_{};
     ProductionTables tables_;
     shading::Texture2DData color_weights_;
+    struct SkyViewCache {  // tables by (d_m, mu_s); shared by copies of the model (same parameters)
+        std::mutex mutex;
+        std::map<std::pair<float, float>, std::unique_ptr<SkyViewTable>> tables;
+    };
+    std::shared_ptr<SkyViewCache> sky_view_cache_ = std::make_shared<SkyViewCache>();
 };
 
 }  // namespace cupola::atmosphere

@@ -34,7 +34,7 @@ ProductionQuality level(const std::string& name, int tw, int th, int ts, int ms,
 }  // namespace
 
 std::vector<std::string> production_quality_names() {
-    return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra"};
+    return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra", "sky"};
 }
 
 ProductionQuality production_quality(const std::string& name) {
@@ -60,6 +60,11 @@ ProductionQuality production_quality(const std::string& name) {
         return q;
     }
     if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+    if (name == "sky") {
+        ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+        q.sky_view = true;
+        return q;
+    }
     if (name == "high") return level(name, 512, 128, 80, 64, 128, 40, 128, 32, 128, 32, 32);
     if (name == "ultra") return level(name, 1024, 256, 160, 64, 256, 64, 128, 32, 256, 64, 64);
     std::string list;

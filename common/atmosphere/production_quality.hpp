@@ -16,6 +16,10 @@ struct ProductionQuality {
     int ms_orders = 6;  // highest order iterated explicitly; 0: Hillaire's J_2 / (1 - f_ms) instead
     int irradiance_width = 64, irradiance_height = 16, irradiance_directions = 64, irradiance_samples = 16;
     int view_samples = 16;  // per-pixel march steps
+    // The sky as look-ups (atmosphere_sky_view.glsl): a sky-view table per frame instead of the
+    // per-pixel march; its size (W x H, H even) and march steps per texel.
+    bool sky_view = false;
+    int sky_view_width = 96, sky_view_height = 128, sky_view_samples = 32;
 
     // The table-defining fields (not view_samples): what the disk cache key covers.
     std::string table_key() const;

@@ -4,15 +4,15 @@
 // converts the result to photometric linear sRGB.
 
 
-// One march step: returns (in-scatter, optical depth) of the interval [t0, t1] through the
+// One march step: the in-scatter parts and the transmittance of the interval [t0, t1] through the
 // sample at its midpoint; energy-conserving in each step (exact for constant coefficients).
 // `light` scales the sunlight reaching the sample (eclipse shadows; 1 outside every shadow):
 // single and multiple scattering alike, i.e. the air around a shadowed sample is taken to be
 // shadowed the same way (the multiple-scattering table knows no shadows).
-AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
-                                     vec2 ms_size, bool use_ms, float r_m, float mu, float mu_s, float nu,
-                                     float t0_m, float t1_m, vec3 throughput, vec3 light) {
-    AtmosphereSegment s;
+AtmosphereSplitSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                          vec2 ms_size, bool use_ms, float r_m, float mu, float mu_s, float nu,
+                                          float t0_m, float t1_m, vec3 throughput, vec3 light) {
+    AtmosphereSplitSegment s;
     float dt = t1_m - t0_m;
     float t = 0.5 * (t0_m + t1_m);
     float r_t = atm_radius_at(r_m, mu, t);
@@ -21,27 +21,36 @@ AtmosphereSegment atm_march_interval(AtmosphereParams a, sampler2D trans, vec2 t
     float dr = atm_rayleigh_density(a, h);
     float dm = atm_mie_density(a, h);
     vec3 sigma_t = a.rayleigh_scattering_per_m * dr + a.mie_extinction_per_m * dm + a.ozone_absorption_per_m * atm_ozone_density(a, h);
-    vec3 t_sun = atm_sun_transmittance(a, trans, trans_size, r_t, mu_s_t);
-    vec3 source = t_sun * (a.rayleigh_scattering_per_m * (dr * atm_rayleigh_phase(nu)) +
-                           a.mie_scattering_per_m * (dm * atm_cornette_shanks_phase(a.mie_g, nu)));
+    vec3 w = throughput * light * atm_one_minus_exp_over_x(sigma_t * dt) * dt;  // integral of T over the step
+    vec3 lit = w * atm_sun_transmittance(a, trans, trans_size, r_t, mu_s_t);
+    s.rayleigh_unphased = lit * a.rayleigh_scattering_per_m * dr;
+    s.mie_unphased = lit * a.mie_scattering_per_m * dm;
+    s.multiple_per_sr = vec3(0.0);
     if (use_ms) {
-        source = source + (a.rayleigh_scattering_per_m * dr + a.mie_scattering_per_m * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
+        s.multiple_per_sr = w * (a.rayleigh_scattering_per_m * dr + a.mie_scattering_per_m * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
     }
-    s.inscatter_per_sr = throughput * light * source * atm_one_minus_exp_over_x(sigma_t * dt) * dt;
     s.transmittance = exp(-sigma_t * dt);
     return s;
 }
 
-// In-scatter and transmittance along the ray from (r_m, mu) over [0, t_end_m] in `samples` steps.
-// The steps are concentrated (quadratically) toward the ray's closest approach to the planet
-// centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a share
-// of the steps proportional to its length, at least one. `shadow` (its casters may be none)
+// The radiance of the parts for a view at nu = cos(view, sun): the phase functions applied.
+vec3 atm_split_inscatter(AtmosphereParams a, AtmosphereSplitSegment s, float nu) {
+    return s.rayleigh_unphased * atm_rayleigh_phase(nu) + s.mie_unphased * atm_cornette_shanks_phase(a.mie_g, nu) +
+           s.multiple_per_sr;
+}
+
+// In-scatter parts and transmittance along the ray from (r_m, mu) over [0, t_end_m] in `samples`
+// steps. The steps are concentrated (quadratically) toward the ray's closest approach to the
+// planet centre, where the air is densest: t_c = -r mu clamped to the segment; each side gets a
+// share of the steps proportional to its length, at least one. `shadow` (its casters may be none)
 // dims the sunlight at each sample; `ecl_lut` is the eclipse table for its lookup-table mode.
-AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
-                            bool use_ms, float r_m, float mu, float mu_s, float nu, float t_end_m, int samples,
-                            EclipseRay shadow, sampler2D ecl_lut) {
-    AtmosphereSegment total;
-    total.inscatter_per_sr = vec3(0.0);
+AtmosphereSplitSegment atm_march_split(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                       vec2 ms_size, bool use_ms, float r_m, float mu, float mu_s, float nu,
+                                       float t_end_m, int samples, EclipseRay shadow, sampler2D ecl_lut) {
+    AtmosphereSplitSegment total;
+    total.rayleigh_unphased = vec3(0.0);
+    total.mie_unphased = vec3(0.0);
+    total.multiple_per_sr = vec3(0.0);
     total.transmittance = vec3(1.0);
     if (t_end_m <= 0.0) return total;
     float t_c = clamp(-r_m * mu, 0.0, t_end_m);
@@ -61,13 +70,27 @@ AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size
             float u = float(i - n_before) / float(n_after);
             t_next = t_c + (t_end_m - t_c) * u * u;
         }
-        AtmosphereSegment s =
+        AtmosphereSplitSegment s =
             atm_march_interval(a, trans, trans_size, ms, ms_size, use_ms, r_m, mu, mu_s, nu, t_prev, t_next, total.transmittance,
                                eclipse_light_along(shadow, ecl_lut, 0.5 * (t_prev + t_next)));
-        total.inscatter_per_sr = total.inscatter_per_sr + s.inscatter_per_sr;
+        total.rayleigh_unphased = total.rayleigh_unphased + s.rayleigh_unphased;
+        total.mie_unphased = total.mie_unphased + s.mie_unphased;
+        total.multiple_per_sr = total.multiple_per_sr + s.multiple_per_sr;
         total.transmittance = total.transmittance * s.transmittance;
         t_prev = t_next;
     }
+    return total;
+}
+
+// The same with the phase functions applied: in-scatter and transmittance.
+AtmosphereSegment atm_march(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms, vec2 ms_size,
+                            bool use_ms, float r_m, float mu, float mu_s, float nu, float t_end_m, int samples,
+                            EclipseRay shadow, sampler2D ecl_lut) {
+    AtmosphereSplitSegment s = atm_march_split(a, trans, trans_size, ms, ms_size, use_ms, r_m, mu, mu_s, nu, t_end_m,
+                                               samples, shadow, ecl_lut);
+    AtmosphereSegment total;
+    total.inscatter_per_sr = atm_split_inscatter(a, s, nu);
+    total.transmittance = s.transmittance;
     return total;
 }
 

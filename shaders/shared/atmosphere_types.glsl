@@ -51,6 +51,24 @@ struct AtmosphereSegment {
     vec3 transmittance;     // along the marched part of the ray
 };
 
+// The same with the in-scatter kept in its parts, for the sky-view table (atmosphere_sky_view.glsl),
+// which applies the phase functions per pixel: single Rayleigh and single Mie scattering without
+// their phase functions (times atm_rayleigh_phase / atm_cornette_shanks_phase of the pixel's nu
+// they give radiance per unit solar irradiance) and the multiple scattering (isotropic, radiance).
+struct AtmosphereSplitSegment {
+    vec3 rayleigh_unphased;
+    vec3 mie_unphased;
+    vec3 multiple_per_sr;
+    vec3 transmittance;
+};
+
+// One texel of the sky-view table (atmosphere_sky_view.glsl): its three parts, linear sRGB.
+struct AtmosphereSkyViewTexel {
+    vec3 phased;  // single Rayleigh with its phase, plus multiple scattering
+    vec3 mie;     // single Mie without its phase
+    vec3 third;   // sky: effective transmittance; ground: the white ground's radiance
+};
+
 struct AtmosphereAnalyticFit {
     vec3 k1_rad;
     float k2;

@@ -1,0 +1,159 @@
+// The sky-view table (after Hillaire 2020, section 5): the atmosphere's light for every view
+// direction from one camera position, computed once per frame into a small table and looked up
+// per pixel (shared by GLSL and C++). It depends only on the camera's distance from the planet
+// centre and the Sun's zenith angle there, never on a channel's frustum, so every channel of a
+// dome computes the same table and the sky is seamless by construction.
+//
+// Layout: W x H texels, H even. Rows [0, H/2) hold the rays that meet the ground, rows [H/2, H)
+// the rays that do not; a lookup stays inside its half (the ray's ground flag, decided once, picks
+// it), so no texel ever blends the sky with the ground across the horizon. Within a half the row
+// coordinate x runs from 0 at the horizon (the limb, seen from outside) to 1 and is taken through
+// a square root, which puts the rows where the light changes fastest:
+//   camera inside the atmosphere, zenith angle theta, horizon theta_h (> 90 degrees):
+//     sky    theta = theta_h (1 - x^2)           ground theta = theta_h + (pi - theta_h) x^2
+//   camera outside, impact parameter rho (distance of the ray's line from the centre):
+//     sky    rho = R + (top - R) x^2             ground rho = R (1 - x^2)
+// Columns: the azimuth phi in [0, pi] between the view and the Sun about the camera's zenith,
+// linear (the atmosphere is symmetric about the plane of the zenith and the Sun). Texel centres
+// sit on the ends of each range (Bruneton 2017), as in atmosphere_lut_mapping.glsl.
+//
+// A texel holds linear sRGB per unit solar irradiance (times the scene's solar scale, scene units):
+//   0  single Rayleigh scattering with its phase at the texel's nu, plus the multiple scattering;
+//   1  single Mie scattering without its phase: the pixel multiplies it by the Cornette-Shanks
+//      phase of its own nu, so the Sun's aureole is as sharp as the pixels, not the table;
+//   2  sky half: the effective transmittance to the top of the atmosphere of sunlight-coloured
+//      light, per sRGB channel (what lies beyond the air is multiplied by it);
+//      ground half: the radiance of a white Lambertian ground lit by the Sun and the sky, seen
+//      through the air in front of it (the pixel multiplies it by the surface's reflectance).
+
+// Zenith angle of the ground's horizon seen from radius r (> 90 degrees; 90 on the ground).
+float atm_horizon_zenith_rad(AtmosphereParams a, float r_m) {
+    return acos(ray_sphere_horizon_mu(r_m, a.bottom_radius_m));
+}
+
+bool atm_camera_outside(AtmosphereParams a, float d_m) {
+    return d_m > a.top_radius_m;
+}
+
+// Row coordinate x in [0, 1] of a ray within its half; `q` is the zenith angle (inside) or the
+// impact parameter in metres (outside).
+float atm_sky_view_x(AtmosphereParams a, float d_m, bool ground, float q) {
+    float R = a.bottom_radius_m;
+    if (atm_camera_outside(a, d_m)) {
+        if (ground) return sqrt(clamp((R - q) / R, 0.0, 1.0));
+        return sqrt(clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0));
+    }
+    float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
+    if (ground) return sqrt(clamp((q - th) / (CUPOLA_PI - th), 0.0, 1.0));
+    return sqrt(clamp((th - q) / th, 0.0, 1.0));
+}
+
+// The inverse: q of a row coordinate.
+float atm_sky_view_q(AtmosphereParams a, float d_m, bool ground, float x) {
+    float R = a.bottom_radius_m;
+    if (atm_camera_outside(a, d_m)) {
+        if (ground) return R * (1.0 - x * x);
+        return R + (a.top_radius_m - R) * x * x;
+    }
+    float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
+    if (ground) return th + (CUPOLA_PI - th) * x * x;
+    return th * (1.0 - x * x);
+}
+
+// Table coordinates of a ray: its half, row coordinate x and azimuth phi_rad.
+vec2 atm_sky_view_uv(bool ground, float x, float phi_rad, vec2 size) {
+    float w = atm_texcoord_from_unit(clamp(x, 0.0, 1.0), 0.5 * size.y);
+    float v = ground ? 0.5 * (1.0 - w) : 0.5 * (1.0 + w);
+    return vec2(atm_texcoord_from_unit(clamp(phi_rad / CUPOLA_PI, 0.0, 1.0), size.x), v);
+}
+
+// The ray of a table coordinate, in the table's frame: the camera on the +z axis at d_m (so the
+// centre is along c_hat = -z), the Sun in the x-z plane at zenith cosine mu_s. Returns the unit
+// view direction.
+vec3 atm_sky_view_direction(AtmosphereParams a, float d_m, vec2 uv, vec2 size) {
+    bool ground = uv.y < 0.5;
+    float w = ground ? 1.0 - 2.0 * uv.y : 2.0 * uv.y - 1.0;
+    float x = clamp(atm_unit_from_texcoord(w, 0.5 * size.y), 0.0, 1.0);
+    float phi = CUPOLA_PI * clamp(atm_unit_from_texcoord(uv.x, size.x), 0.0, 1.0);
+    float q = atm_sky_view_q(a, d_m, ground, x);
+    float sin_t;
+    float cos_t;
+    if (atm_camera_outside(a, d_m)) {  // zenith angle pi - asin(rho / d)
+        sin_t = clamp(q / d_m, 0.0, 1.0);
+        cos_t = -sqrt((1.0 - sin_t) * (1.0 + sin_t));
+    } else {
+        sin_t = sin(q);
+        cos_t = cos(q);
+    }
+    return vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t);
+}
+
+vec3 atm_sky_view_sun(float mu_s) {
+    return vec3(sqrt(max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
+}
+
+// Linear sRGB of a per-unit-irradiance spectrum given at the sample wavelengths.
+vec3 atm_samples_to_rgb(vec3 f, sampler2D weights, float n) {
+    return xyz_to_linear_srgb(atm_samples_to_xyz(f, weights, n));
+}
+
+// One texel of the table: the march along its ray (`samples` steps, no shadows) and the colour of
+// each part. t[0..2] as in the header.
+AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                            vec2 ms_size, sampler2D irr, vec2 irr_size, sampler2D weights,
+                                            float n_weights, float d_m, float mu_s, vec2 uv, vec2 size,
+                                            int samples) {
+    vec3 v = atm_sky_view_direction(a, d_m, uv, size);
+    vec3 sun = atm_sky_view_sun(mu_s);
+    AtmosphereRayStart st = atm_ray_start(a, d_m, v, vec3(0.0, 0.0, -1.0), sun);
+    AtmosphereSkyViewTexel t;
+    t.phased = vec3(0.0);
+    t.mie = vec3(0.0);
+    t.third = vec3(1.0);
+    bool ground = uv.y < 0.5;
+    if (!st.valid) {
+        if (ground) t.third = vec3(0.0);
+        return t;
+    }
+    AtmosphereSplitSegment s = atm_march_split(a, trans, trans_size, ms, ms_size, true, st.r_m, st.mu, st.mu_s, st.nu,
+                                               atm_view_ray_length(a, st, -1.0), samples,
+                                               eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
+    t.phased = atm_samples_to_rgb(s.rayleigh_unphased * atm_rayleigh_phase(st.nu) + s.multiple_per_sr, weights, n_weights);
+    t.mie = atm_samples_to_rgb(s.mie_unphased, weights, n_weights);
+    if (ground) {
+        float len = atm_distance_to_ground(a, st.r_m, st.mu);
+        float mu_s_g = atm_mu_s_at(st.r_m, st.mu_s, st.nu, len, max(atm_radius_at(st.r_m, st.mu, len), a.bottom_radius_m));
+        vec3 e = atm_surface_illuminance(a, trans, trans_size, irr, irr_size, a.bottom_radius_m, mu_s_g);
+        t.third = atm_samples_to_rgb(s.transmittance * e * (1.0 / CUPOLA_PI), weights, n_weights);
+    } else {
+        vec3 white = atm_samples_to_rgb(vec3(1.0), weights, n_weights);
+        t.third = atm_samples_to_rgb(s.transmittance, weights, n_weights) / max(white, vec3(1e-30));
+    }
+    return t;
+}
+
+// What a pixel needs to look its ray up: the half, the row coordinate and the azimuth. `st` is the
+// ray's start (atm_ray_start with the same d_m, v, c_hat, sun), `ground` its ground flag.
+vec2 atm_sky_view_pixel_uv(AtmosphereParams a, float d_m, vec3 v, vec3 c_hat, vec3 sun, AtmosphereRayStart st,
+                           bool ground, vec2 size) {
+    vec3 up = -c_hat;
+    float q;
+    if (atm_camera_outside(a, d_m)) {
+        q = d_m * sin(angle_between_units(v, c_hat));
+    } else {
+        q = acos(clamp(st.mu, -1.0, 1.0));
+    }
+    vec3 vp = v - up * dot(v, up);
+    vec3 sp = sun - up * dot(sun, up);
+    float den = sqrt(dot(vp, vp) * dot(sp, sp));
+    float cos_phi = den > 1e-20 ? dot(vp, sp) / den : 1.0;
+    float phi = acos(clamp(cos_phi, -1.0, 1.0));
+    return atm_sky_view_uv(ground, atm_sky_view_x(a, d_m, ground, q), phi, size);
+}
+
+// The pixel's light from the table: the in-scatter (linear sRGB per unit solar irradiance, the
+// Mie phase of the pixel's own nu applied) and, in `third`, the transmittance (sky) or the white
+// ground's radiance (ground) of texel part 2.
+vec3 atm_sky_view_inscatter(AtmosphereParams a, sampler2D t0, sampler2D t1, vec2 uv, float nu) {
+    return vec3(textureLod(t0, uv, 0.0)) + vec3(textureLod(t1, uv, 0.0)) * atm_cornette_shanks_phase(a.mie_g, nu);
+}
