@@ -1,6 +1,6 @@
 #version 450 core
 // Deferred atmosphere of one planet, per pixel of the channel (slave/passes/atmosphere_pass.hpp):
-//   out = surface_or_background * T + in-scatter,
+//   out = surface_or_background * T + in-scatter (the background through dual-source blending),
 // with T and the in-scatter of the production model along the view ray (ray march through the
 // tables, or the analytic fast mode) up to the ground, the top of the atmosphere, or the scene
 // geometry in front. Where the pixel shows this planet's surface, the surface is relit through
@@ -26,7 +26,6 @@ uniform vec2 u_trans_size;
 uniform vec2 u_ms_size;
 uniform vec2 u_irr_size;
 uniform float u_weight_count;
-uniform sampler2D u_scene;     // colour so far
 uniform sampler2D u_geometry;  // (reflectance, distance); distance < 0: nothing drawn
 uniform sampler2D u_transmittance;
 uniform sampler2D u_multiple_scattering;
@@ -36,7 +35,9 @@ uniform EclipseCasters u_ecl;
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
 
-layout(location = 0) out vec4 frag_color;
+// Blended in place (dual-source, as atmosphere_lookup.frag): colour = out_add + colour so far * out_factor.
+layout(location = 0, index = 0) out vec4 out_add;
+layout(location = 0, index = 1) out vec4 out_factor;
 
 // Per unit solar irradiance at the sample wavelengths -> linear sRGB in scene units; negative
 // (out of gamut) components are clipped.
@@ -46,12 +47,12 @@ vec3 to_scene_rgb(vec3 f) {
 
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 scene = texelFetch(u_scene, px, 0);
     vec4 geo = texelFetch(u_geometry, px, 0);
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
     AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
     if (!st.valid) {  // the ray misses the atmosphere
-        frag_color = scene;
+        out_add = vec4(0.0);
+        out_factor = vec4(1.0);
         return;
     }
     float g = geo.a;
@@ -73,7 +74,7 @@ void main() {
     // tinted (RGB) by the region of its surface point, so the whole penumbra shows.
     bool illustrative = u_ecl.count > 0 && u_ecl.mode == ECLIPSE_MODE_ILLUSTRATIVE;
     vec3 tint = vec3(1.0);
-    vec3 base;
+    vec3 base = vec3(0.0);  // the relit surface; else the scene so far, through out_factor
     float t_geometry;
     if (surface) {
         vec3 reflectance = g >= 0.0 ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
@@ -98,7 +99,6 @@ void main() {
         // the ground ends at the surface.
         t_geometry = ground ? -1.0 : max(g, t_hit);
     } else {
-        base = scene.rgb;
         t_geometry = g;
     }
 
@@ -117,5 +117,6 @@ void main() {
         seg = atm_view_ray_shadowed(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
                                     u_use_ms != 0, st, t_geometry, u_samples, shadow, u_eclipse_lut);
     }
-    frag_color = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint, scene.a);
+    out_add = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint, 0.0);
+    out_factor = surface ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(seg.transmittance * tint, 1.0);
 }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "atmosphere/solar_scale.hpp"
+#include "passes/atmosphere_uniforms.hpp"
+#include "passes/sphere_screen_bounds.hpp"
 
 namespace cupola {
 
@@ -24,26 +26,32 @@ atmosphere::ProductionAtmosphere make_model(const BodyConfig& body) {
     return atmosphere::ProductionAtmosphere(c.parameters, atmosphere::production_quality(c.model));
 }
 
-glm::vec2 size_of(const shading::Texture2DData& t) { return glm::vec2(t.width, t.height); }
+enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7 };  // tables: 2..5, sky view: 7..9
 
-// The AtmosphereParams uniform struct, member by member.
-void set_params(const GlProgram& p, const shading::AtmosphereParams& a) {
-    p.set("u_atm.bottom_radius_m", a.bottom_radius_m);
-    p.set("u_atm.top_radius_m", a.top_radius_m);
-    p.set("u_atm.rayleigh_scattering_per_m", a.rayleigh_scattering_per_m);
-    p.set("u_atm.rayleigh_scale_height_m", a.rayleigh_scale_height_m);
-    p.set("u_atm.mie_scattering_per_m", a.mie_scattering_per_m);
-    p.set("u_atm.mie_extinction_per_m", a.mie_extinction_per_m);
-    p.set("u_atm.mie_scale_height_m", a.mie_scale_height_m);
-    p.set("u_atm.mie_g", a.mie_g);
-    p.set("u_atm.ozone_absorption_per_m", a.ozone_absorption_per_m);
-    p.set("u_atm.ozone_bottom_m", a.ozone_bottom_m);
-    p.set("u_atm.ozone_peak_m", a.ozone_peak_m);
-    p.set("u_atm.ozone_top_m", a.ozone_top_m);
-    p.set("u_atm.ground_albedo", a.ground_albedo);
+// Direction from the planet's centre to the Sun (as the body pass lights it), and the Sun's
+// irradiance there in scene units over that of the model's physical spectrum; in double.
+struct PlanetSun {
+    glm::dvec3 dir_world{0.0, 0.0, 1.0};
+    double solar_scale = 0.0;  // 0: no Sun
+};
+PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphere::ProductionAtmosphere& m) {
+    PlanetSun out;
+    if (!sun.present) return out;
+    const glm::dvec3 to_sun = sun.position_m - state.position_m;
+    const double d_sun = glm::length(to_sun);
+    if (d_sun <= 0.0) return out;
+    out.dir_world = to_sun / d_sun;
+    out.solar_scale = sun_irradiance(sun, d_sun) / atmosphere::physical_solar_illuminance(m);
+    return out;
 }
 
-enum Unit : GLuint { kScene = 0, kGeometry = 1, kTables = 2, kEclipseLut = 6 };  // tables: 2..5
+// What the sky-view table depends on, from world positions in double (the same on every channel):
+// the camera's distance from the centre and the Sun's zenith cosine at the camera.
+glm::vec2 sky_view_inputs(const ChannelView& view, const BodyState& state, const glm::dvec3& sun_dir_world) {
+    const glm::dvec3 up = view.camera_position_m - state.position_m;
+    const double d = glm::length(up);
+    return glm::vec2(static_cast<float>(d), static_cast<float>(d > 0.0 ? glm::dot(up / d, sun_dir_world) : 1.0));
+}
 
 }  // namespace
 
@@ -53,6 +61,12 @@ GpuAtmosphere::GpuAtmosphere(const BodyConfig& body)
       multiple_scattering_(table_texture(model_.tables().multiple_scattering, GL_LINEAR)),
       irradiance_(table_texture(model_.tables().irradiance, GL_LINEAR)),
       color_weights_(table_texture(model_.color_weights(), GL_NEAREST)) {}
+
+GpuSkyViewTable* GpuAtmosphere::sky_view() {
+    if (!model_.quality().sky_view) return nullptr;
+    if (!sky_view_) sky_view_ = std::make_unique<GpuSkyViewTable>(*this);
+    return sky_view_.get();
+}
 
 void GpuAtmosphere::bind(GLuint first_unit) const {
     transmittance_.bind(first_unit);
@@ -77,7 +91,17 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
 }
 
 AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows)
-    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("fullscreen.vert", "atmosphere.frag") {}
+    : atmospheres_(std::move(atmospheres)),
+      shadows_(shadows),
+      program_("fullscreen.vert", "atmosphere.frag"),
+      lookup_program_("fullscreen.vert", "atmosphere_lookup.frag") {}
+
+long AtmospherePass::sky_view_renders() const {
+    long n = 0;
+    for (const auto& it : atmospheres_)
+        if (const GpuSkyViewTable* t = it.second->sky_view_if_made()) n += t->renders();
+    return n;
+}
 
 int AtmospherePass::prepare(const FrameContext& frame) {
     frame_ = &frame;
@@ -103,60 +127,68 @@ int AtmospherePass::prepare(const FrameContext& frame) {
 void AtmospherePass::draw(const PassInputs& in, int step) {
     const Layer& l = layers_.at(static_cast<size_t>(step));
     const FrameContext& f = *frame_;
-    draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.color, *in.geometry, shadows_,
+    draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.geometry, shadows_,
          f.casters_of(l.body->body->id));
 }
 
-void AtmospherePass::draw(const ChannelView& view, const GpuAtmosphere& atm, const BodyState& state,
-                          const SphereView& sphere, const SunLight& sun, const GlTexture& scene,
-                          const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-                          const shading::EclipseCasters& casters) {
+const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::vec2& table_in,
+                                                const shading::EclipseCasters& casters) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
-    const atmosphere::ProductionQuality& q = m.quality();
-    // Direction to the Sun from the planet's centre (as the body pass lights it), and the
-    // Sun's irradiance there in scene units; all in double.
-    glm::dvec3 sun_dir = -sphere.center_dir;  // no Sun: any unit vector (solar_scale is 0)
-    double solar_scale = 0.0;
-    if (sun.present) {
-        const glm::dvec3 to_sun = sun.position_m - state.position_m;
-        const double d_sun = glm::length(to_sun);
-        if (d_sun > 0.0) {
-            sun_dir = view.world_to_channel * (to_sun / d_sun);
-            solar_scale = sun_irradiance(sun, d_sun) / atmosphere::physical_solar_illuminance(m);
-        }
+    const bool shadowed = casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
+    GpuSkyViewTable* table = atm.sky_view();
+    if (table && !shadowed) {
+        table->update(table_in.x, table_in.y);
+        lookup_program_.use();
+        table->bind(kSkyView);
+        lookup_program_.set("u_sky_phased", static_cast<int>(kSkyView));
+        lookup_program_.set("u_sky_mie", static_cast<int>(kSkyView + 1));
+        lookup_program_.set("u_sky_third", static_cast<int>(kSkyView + 2));
+        lookup_program_.set("u_sky_size", table->size());
+        lookup_program_.set("u_samples", m.quality().view_samples);
+        return lookup_program_;
     }
-
+    ++marched_;
+    const atmosphere::ProductionQuality& q = m.quality();
     program_.use();
-    program_.set("u_tangents", view.tangents());
-    program_.set("u_size", view.size());
-    program_.set("u_center_dir", glm::vec3(sphere.center_dir));
-    program_.set("u_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
-    program_.set("u_distances_m", sphere_distances(sphere));
-    program_.set("u_d_m", static_cast<float>(sphere.distance_m));
-    program_.set("u_sun", glm::vec3(sun_dir));
-    program_.set("u_solar_scale", static_cast<float>(solar_scale));
-    set_params(program_, m.shader_params());
     program_.set("u_fit.k1_rad", m.analytic_fit().k1_rad);
     program_.set("u_fit.k2", m.analytic_fit().k2);
     program_.set("u_analytic", q.analytic ? 1 : 0);
     program_.set("u_use_ms", q.multiple_scattering ? 1 : 0);
     program_.set("u_samples", q.view_samples);
-    program_.set("u_trans_size", size_of(m.tables().transmittance));
-    program_.set("u_ms_size", size_of(m.tables().multiple_scattering));
-    program_.set("u_irr_size", size_of(m.tables().irradiance));
-    program_.set("u_weight_count", static_cast<float>(m.color_weights().width));
-    program_.set("u_scene", static_cast<int>(kScene));
-    program_.set("u_geometry", static_cast<int>(kGeometry));
-    program_.set("u_transmittance", static_cast<int>(kTables));
-    program_.set("u_multiple_scattering", static_cast<int>(kTables + 1));
-    program_.set("u_irradiance", static_cast<int>(kTables + 2));
-    program_.set("u_weights", static_cast<int>(kTables + 3));
-    scene.bind(kScene);
+    return program_;
+}
+
+void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const BodyState& state,
+                          const SphereView& sphere, const SunLight& sun, const GlTexture& geometry,
+                          const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
+    const atmosphere::ProductionAtmosphere& m = atm.model();
+    const PlanetSun ps = planet_sun(state, sun, m);
+    const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
+    const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
+    const GlProgram& p = choose_program(atm, table_in, casters);
+    p.set("u_tangents", view.tangents());
+    p.set("u_size", view.size());
+    p.set("u_center_dir", glm::vec3(sphere.center_dir));
+    p.set("u_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
+    p.set("u_distances_m", sphere_distances(sphere));
+    p.set("u_d_m", static_cast<float>(sphere.distance_m));
+    p.set("u_sun", glm::vec3(sun_dir));
+    p.set("u_solar_scale", static_cast<float>(ps.solar_scale));
+    set_atmosphere_params(p, m.shader_params());
+    bind_atmosphere_tables(p, atm, kTables);
+    p.set("u_geometry", static_cast<int>(kGeometry));
     geometry.bind(kGeometry);
-    atm.bind(kTables);
-    shadows.apply(program_, casters, kEclipseLut);
+    shadows.apply(p, casters, kEclipseLut);
+    const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());
+    if (r.empty()) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r.x, r.y, r.width, r.height);
+    glEnablei(GL_BLEND, 0);
+    glBlendFuncSeparatei(0, GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
     vao_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisablei(GL_BLEND, 0);
+    glDisable(GL_SCISSOR_TEST);
     gl::check("atmosphere pass (" + m.parameters().name + ")");
 }
 

@@ -1,10 +1,15 @@
 #pragma once
-// A planet's atmosphere, deferred, over the whole channel (shaders/atmosphere.frag).
-// Reads the scene colour and the deferred geometry the body pass wrote (reflectance, hit
-// distance), and writes a new colour target: the planet's own surface relit through the
-// atmosphere (direct Sun + sky light), everything behind the air attenuated, plus in-scatter.
+// A planet's atmosphere, deferred, over the pixels that can see its shell. Reads the deferred
+// geometry the body pass wrote (reflectance, hit distance) and blends into the colour in place
+// (dual-source blending: colour = in-scatter + colour so far x transmittance, or the relit
+// surface): the planet's own surface relit through the atmosphere (direct Sun + sky light),
+// everything behind the air attenuated, plus in-scatter. Only the screen bounds of the
+// top-of-atmosphere sphere are drawn (a scissor; sphere_screen_bounds.hpp).
 // The model is the production atmosphere (common/atmosphere/production_model.hpp) running the
 // same shared code as the CPU; its tables are loaded from the disk cache or built at start-up.
+// A sky-view level looks the sky up in a table rendered once per frame for the whole dome
+// (sky_view_gpu.hpp, shaders/atmosphere_lookup.frag); the march levels, and any frame in which
+// an eclipse shadow falls on this planet, march every pixel (shaders/atmosphere.frag).
 //
 // Units: the shared code works per unit solar irradiance and atm_samples_to_xyz() turns that
 // into cd m^-2 for the physical solar spectrum, whose illuminance E_phys is the sum of the
@@ -24,6 +29,7 @@
 #include "passes/body_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/render_pass.hpp"
+#include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "projection/channel_frustum.hpp"
 #include "wire/snapshot.hpp"
@@ -40,10 +46,14 @@ public:
     // Binds transmittance, multiple scattering, irradiance and colour weights to units
     // first_unit .. first_unit + 3.
     void bind(GLuint first_unit) const;
+    // The sky-view table of a sky-view level (null for the march levels), created on first use.
+    GpuSkyViewTable* sky_view();
+    const GpuSkyViewTable* sky_view_if_made() const { return sky_view_.get(); }
 
 private:
     atmosphere::ProductionAtmosphere model_;
     GlTexture transmittance_, multiple_scattering_, irradiance_, color_weights_;
+    std::unique_ptr<GpuSkyViewTable> sky_view_;
 };
 
 // True when a sphere (centre in the channel frame, metres) lies entirely outside the channel's
@@ -58,35 +68,41 @@ public:
     AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows);
 
     // In the pass list: one draw per body with an atmosphere whose top-of-atmosphere sphere can
-    // touch the frustum, far to near, each over everything drawn so far: reads the colour and the
-    // G-buffer, writes the colour (ping-pong).
+    // touch the frustum, far to near, each over everything drawn so far: reads the G-buffer,
+    // blends into the colour.
     std::string name() const override { return "atmosphere"; }
-    PassIo io() const override { return {.reads_color = true, .reads_geometry = true, .writes_color = true}; }
+    PassIo io() const override { return {.reads_geometry = true, .writes_color = true}; }
     int prepare(const FrameContext& frame) override;
     void draw(const PassInputs& in, int step) override;
 
     const Atmospheres& atmospheres() const { return atmospheres_; }
     long draws_run() const { return run_; }          // summed over frames
     long draws_skipped() const { return skipped_; }  // atmosphere entirely outside the frustum
+    long draws_marched() const { return marched_; }  // drawn by the per-pixel march
+    long sky_view_renders() const;                   // sky-view tables rendered, all bodies
 
-    // One body's atmosphere. Draws into the bound framebuffer (the whole viewport). scene: colour so far; geometry: the
-    // body pass's (reflectance, distance), distance < 0 where nothing was drawn.
-    void draw(const ChannelView& view, const GpuAtmosphere& atmosphere, const BodyState& state,
-              const SphereView& sphere, const SunLight& sun, const GlTexture& scene, const GlTexture& geometry,
-              const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
+    // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
+    // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.
+    void draw(const ChannelView& view, GpuAtmosphere& atmosphere, const BodyState& state, const SphereView& sphere,
+              const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
+              const shading::EclipseCasters& casters);
 
 private:
     struct Layer {
         const FrameBody* body;
-        const GpuAtmosphere* atmosphere;
+        GpuAtmosphere* atmosphere;
     };
+    // The program for this draw: the look-up, or the march (set up with its own uniforms).
+    // table_in: the sky-view table's (camera distance, Sun zenith cosine).
+    const GlProgram& choose_program(GpuAtmosphere& atmosphere, const glm::vec2& table_in,
+                                    const shading::EclipseCasters& casters);
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
-    GlProgram program_;
+    GlProgram program_, lookup_program_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws
-    long run_ = 0, skipped_ = 0;
+    long run_ = 0, skipped_ = 0, marched_ = 0;
 };
 
 }  // namespace cupola

@@ -1,0 +1,99 @@
+#version 450 core
+// Deferred atmosphere of one planet from its sky-view table (shaders/shared/atmosphere_sky_view.glsl,
+// rendered this frame by sky_view.frag): about one table fetch per pixel instead of a march.
+// Blended in place with dual-source blending (slave/passes/atmosphere_pass.cpp):
+//   colour = out_add + colour_so_far * out_factor,
+// so the pass touches only the pixels of its scissor (the top-of-atmosphere sphere's screen
+// bounds) and copies nothing. Where the pixel shows this planet's surface, the surface is relit:
+// its reflectance times the table's white-ground radiance (the Sun and the sky on the ground, seen
+// through the air in front); elsewhere what lies beyond the air is multiplied by the table's
+// transmittance. Scene geometry inside the air (not this planet's surface) is marched per pixel,
+// the only pixels that are. Eclipse shadows on this planet draw with the march pass instead
+// (atmosphere.frag), except the illustrative mode, which tints the surface only.
+uniform vec4 u_tangents;
+uniform vec2 u_size;
+uniform vec3 u_center_dir;   // unit, channel frame: camera -> planet centre
+uniform float u_sin_alpha;   // R / d (at most 1), as the body pass had it
+uniform vec4 u_distances_m;  // (d, R, d - R, d + R) in metres, as the body pass had them
+uniform float u_d_m;         // camera -> planet centre, metres
+uniform vec3 u_sun;          // unit, channel frame: planet centre -> Sun
+uniform float u_solar_scale; // scene irradiance of the Sun / illuminance of the physical spectrum
+uniform AtmosphereParams u_atm;
+uniform int u_samples;       // march steps for geometry inside the air
+uniform vec2 u_trans_size;
+uniform vec2 u_ms_size;
+uniform vec2 u_irr_size;
+uniform float u_weight_count;
+uniform sampler2D u_geometry;  // (reflectance, distance); distance < 0: nothing drawn
+uniform sampler2D u_transmittance;
+uniform sampler2D u_multiple_scattering;
+uniform sampler2D u_irradiance;
+uniform sampler2D u_weights;
+uniform sampler2D u_sky_phased;
+uniform sampler2D u_sky_mie;
+uniform sampler2D u_sky_third;
+uniform vec2 u_sky_size;
+uniform EclipseCasters u_ecl;  // illustrative mode only (or none)
+uniform sampler2D u_eclipse_lut;
+uniform vec2 u_eclipse_lut_size;
+
+layout(location = 0, index = 0) out vec4 out_add;
+layout(location = 0, index = 1) out vec4 out_factor;
+
+void keep_scene() {
+    out_add = vec4(0.0);
+    out_factor = vec4(1.0);
+}
+
+// Geometry inside the air: the march up to it (the table holds whole rays only).
+void march_to_geometry(AtmosphereRayStart st, float g) {
+    AtmosphereSegment seg = atm_view_ray(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
+                                         true, st, g, u_samples);
+    out_add = vec4(max(atm_samples_to_rgb(seg.inscatter_per_sr, u_weights, u_weight_count), vec3(0.0)) * u_solar_scale, 0.0);
+    out_factor = vec4(atm_samples_to_rgb(seg.transmittance, u_weights, u_weight_count) /
+                      max(atm_samples_to_rgb(vec3(1.0), u_weights, u_weight_count), vec3(1e-30)), 1.0);
+}
+
+void main() {
+    vec4 geo = texelFetch(u_geometry, ivec2(gl_FragCoord.xy), 0);
+    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+    AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
+    if (!st.valid) {  // the ray misses the atmosphere
+        keep_scene();
+        return;
+    }
+    float g = geo.a;
+    // This planet's surface? The body pass's own hit, recomputed with the same code and uniforms
+    // (as atmosphere.frag decides it).
+    vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+    bool surface = false;
+    if (hit.w >= 0.0) {
+        surface = g < 0.0 || g >= sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m) * (1.0 - 1e-3);
+    }
+    bool ground = surface || atm_ray_hits_ground(u_atm, st.r_m, st.mu);
+    if (!surface && g >= 0.0) {  // scene geometry in front of the ground or the sky
+        if (g <= st.offset_m) {
+            keep_scene();
+            return;
+        }
+        if (g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)) {
+            march_to_geometry(st, g);
+            return;
+        }
+    }
+    vec2 uv = atm_sky_view_pixel_uv(u_atm, u_d_m, v, u_center_dir, u_sun, st, ground, u_sky_size);
+    vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, st.nu);
+    vec3 third = vec3(textureLod(u_sky_third, uv, 0.0));
+    if (!ground) {
+        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale, 0.0);
+        out_factor = vec4(third, 1.0);
+        return;
+    }
+    vec3 reflectance = (surface && g >= 0.0) ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
+    vec3 tint = vec3(1.0);
+    if (u_ecl.count > 0 && surface) {  // illustrative: the region of the surface point, as a display colour
+        tint = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances_m.y);
+    }
+    out_add = vec4(max(reflectance * third + inscatter, vec3(0.0)) * u_solar_scale * tint, 0.0);
+    out_factor = vec4(0.0, 0.0, 0.0, 1.0);
+}

@@ -1,0 +1,40 @@
+#include "passes/atmosphere_uniforms.hpp"
+
+#include "passes/atmosphere_pass.hpp"
+
+namespace cupola {
+
+namespace {
+glm::vec2 size_of(const shading::Texture2DData& t) { return glm::vec2(t.width, t.height); }
+}  // namespace
+
+void set_atmosphere_params(const GlProgram& p, const shading::AtmosphereParams& a) {
+    p.set("u_atm.bottom_radius_m", a.bottom_radius_m);
+    p.set("u_atm.top_radius_m", a.top_radius_m);
+    p.set("u_atm.rayleigh_scattering_per_m", a.rayleigh_scattering_per_m);
+    p.set("u_atm.rayleigh_scale_height_m", a.rayleigh_scale_height_m);
+    p.set("u_atm.mie_scattering_per_m", a.mie_scattering_per_m);
+    p.set("u_atm.mie_extinction_per_m", a.mie_extinction_per_m);
+    p.set("u_atm.mie_scale_height_m", a.mie_scale_height_m);
+    p.set("u_atm.mie_g", a.mie_g);
+    p.set("u_atm.ozone_absorption_per_m", a.ozone_absorption_per_m);
+    p.set("u_atm.ozone_bottom_m", a.ozone_bottom_m);
+    p.set("u_atm.ozone_peak_m", a.ozone_peak_m);
+    p.set("u_atm.ozone_top_m", a.ozone_top_m);
+    p.set("u_atm.ground_albedo", a.ground_albedo);
+}
+
+void bind_atmosphere_tables(const GlProgram& p, const GpuAtmosphere& atm, GLuint first_unit) {
+    const atmosphere::ProductionAtmosphere& m = atm.model();
+    p.set("u_trans_size", size_of(m.tables().transmittance));
+    p.set("u_ms_size", size_of(m.tables().multiple_scattering));
+    p.set("u_irr_size", size_of(m.tables().irradiance));
+    p.set("u_weight_count", static_cast<float>(m.color_weights().width));
+    p.set("u_transmittance", static_cast<int>(first_unit));
+    p.set("u_multiple_scattering", static_cast<int>(first_unit + 1));
+    p.set("u_irradiance", static_cast<int>(first_unit + 2));
+    p.set("u_weights", static_cast<int>(first_unit + 3));
+    atm.bind(first_unit);
+}
+
+}  // namespace cupola
