@@ -26,7 +26,8 @@ def check_line(line_no, line, size, read_back):
     for key, kind in (("view", str), ("size", int), ("frames", int), ("model", str), ("renderer", str),
                       ("read_back", bool), ("frame_ms", float), ("untimed_frame_ms", float),
                       ("trivial_ms", float), ("ratio", float), ("passes", dict), ("passes_ratio", dict),
-                      ("read_back_ms", float)):
+                      ("read_back_ms", float), ("frame_min_ms", float), ("trivial_min_ms", float),
+                      ("ratio_of_minima", float)):
         if key not in j:
             sys.exit(f"{where}: no \"{key}\" in {sorted(j)}")
         value = j[key]
@@ -38,11 +39,14 @@ def check_line(line_no, line, size, read_back):
         sys.exit(f"{where}: size {j['size']}, asked for {size}")
     if j["read_back"] != read_back:
         sys.exit(f"{where}: read_back {j['read_back']}, asked for {read_back}")
-    for key in ("frame_ms", "untimed_frame_ms", "trivial_ms", "ratio"):
+    for key in ("frame_ms", "untimed_frame_ms", "trivial_ms", "ratio", "frame_min_ms", "trivial_min_ms",
+                "ratio_of_minima"):
         if not (math.isfinite(j[key]) and j[key] > 0):
             sys.exit(f"{where}: \"{key}\" is {j[key]}, not a positive number")
     if not math.isclose(j["ratio"], j["frame_ms"] / j["trivial_ms"], rel_tol=1e-9):
         sys.exit(f"{where}: ratio {j['ratio']} is not frame_ms / trivial_ms = {j['frame_ms'] / j['trivial_ms']}")
+    if j["frame_min_ms"] > j["frame_ms"] or j["trivial_min_ms"] > j["trivial_ms"]:
+        sys.exit(f"{where}: a minimum is above its median: {j}")
     passes = j["passes"]
     if not passes or set(passes) != set(j["passes_ratio"]):
         sys.exit(f"{where}: passes {sorted(passes)} and passes_ratio {sorted(j['passes_ratio'])} differ or are empty")
