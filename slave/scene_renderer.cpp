@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <stdexcept>
 
@@ -114,7 +115,29 @@ struct SceneRenderer::Impl {
     PatternPass* pattern = nullptr;        // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
     uint64_t read_backs = 0;  // frames read back (read_back())
+    bool timing = false;      // set_pass_timing()
+    FrameTimings timings;     // the last timed frame
 };
+
+namespace {
+using TimingClock = std::chrono::steady_clock;
+
+double ms_since(TimingClock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(TimingClock::now() - t0).count();
+}
+
+// Waits for the GPU and adds the time since t0 to the pass's entry (a name seen twice sums up).
+void record_pass(FrameTimings& t, const std::string& name, TimingClock::time_point t0) {
+    glFinish();
+    const double ms = ms_since(t0);
+    for (auto& [n, v] : t.passes_ms)
+        if (n == name) {
+            v += ms;
+            return;
+        }
+    t.passes_ms.emplace_back(name, ms);
+}
+}  // namespace
 
 // The frame as every pass sees it: the channel's view, the light (the first of the scene's
 // stars in the snapshot), the bodies far to near and their eclipse shadows.
@@ -198,8 +221,17 @@ void SceneRenderer::insert_pass(size_t position, std::unique_ptr<RenderPass> pas
 
 Image SceneRenderer::render(const Snapshot& snap) {
     draw(snap);
-    return read_back();
+    if (!impl_->timing) return read_back();
+    const auto t0 = TimingClock::now();
+    Image image = read_back();
+    impl_->timings.read_back_ms = ms_since(t0);
+    impl_->timings.frame_ms += impl_->timings.read_back_ms;
+    return image;
 }
+
+void SceneRenderer::set_pass_timing(bool on) { impl_->timing = on; }
+
+const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 
 const GlTexture& SceneRenderer::color() const { return impl_->targets.color(); }
 
@@ -212,18 +244,23 @@ uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
 
 void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
+    const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
+    if (m.timing) m.timings = FrameTimings{};
     const FrameContext frame = m.frame_context(snap);
     m.targets.begin_frame();
     for (size_t i = m.first_pass(snap); i < m.passes.size(); ++i) {
         RenderPass* pass = m.passes[i].get();
+        const auto pass_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
         const PassIo io = pass->io();
         const int steps = pass->prepare(frame);
         for (int step = 0; step < steps; ++step) {
             pass->draw(m.targets.bind_for(io), step);
             m.targets.drawn(io);
         }
+        if (m.timing) record_pass(m.timings, pass->name(), pass_t0);
     }
     glFinish();
+    if (m.timing) m.timings.frame_ms = ms_since(frame_t0);
     for (const auto& pass : m.passes) pass->frame_finished();  // this frame's queries are done by now: no wait
 }
 

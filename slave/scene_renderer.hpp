@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/cluster_config.hpp"
@@ -23,6 +24,14 @@ struct AtmosphereStats {
     int tables_built_or_loaded = 0;  // at construction, one per body with an atmosphere
     long passes_run = 0;             // summed over frames
     long passes_skipped = 0;         // atmosphere entirely outside the frustum
+};
+
+// The wall time of one frame, per pass, when pass timing is on (SceneRenderer::set_pass_timing).
+struct FrameTimings {
+    // Per pass name, in the order the passes ran: prepare() and every step, up to a glFinish().
+    std::vector<std::pair<std::string, double>> passes_ms;
+    double read_back_ms = 0.0;  // render()'s read-back; 0 when the frame was only drawn
+    double frame_ms = 0.0;      // the whole draw() (its CPU set-up included), plus read_back_ms
 };
 
 class RenderPass;
@@ -46,6 +55,12 @@ public:
     // The newest finished glare occlusion-query results (for the frame report): after render()
     // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.
     const std::vector<GlareMeasurement>& glare_measurements() const;
+
+    // Pass timing, off by default (then draw() waits for the GPU only once, at its end): when
+    // on, draw() also waits after every pass and records the wall times of the frame.
+    void set_pass_timing(bool on);
+    // The last frame's timings while pass timing is on (empty before the first timed frame).
+    const FrameTimings& last_frame_timings() const;
 
     // The passes' names in the order they run.
     std::vector<std::string> pass_names() const;
