@@ -33,6 +33,8 @@ uniform sampler2D u_sky_phased;
 uniform sampler2D u_sky_mie;
 uniform sampler2D u_sky_third;
 uniform vec2 u_sky_size;
+uniform float u_mu_h;        // the ground horizon's zenith cosine at the camera (inside)
+uniform vec3 u_sun_perp;     // atm_sky_view_sun_perp(-u_center_dir, u_sun)
 uniform EclipseCasters u_ecl;  // illustrative mode only (or none)
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
@@ -45,6 +47,7 @@ void keep_scene() {
     out_factor = vec4(1.0);
 }
 
+#if SKY_GEOMETRY
 // Geometry inside the air: the march up to it (the table holds whole rays only).
 void march_to_geometry(AtmosphereRayStart st, float g) {
     AtmosphereSegment seg = atm_view_ray(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
@@ -53,16 +56,78 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
     out_factor = vec4(atm_samples_to_rgb(seg.transmittance, u_weights, u_weight_count) /
                       max(atm_samples_to_rgb(vec3(1.0), u_weights, u_weight_count), vec3(1e-30)), 1.0);
 }
+#endif
 
-void main() {
-    vec4 geo = texelFetch(u_geometry, ivec2(gl_FragCoord.xy), 0);
-    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+// The variants (defined in the prelude by slave/passes/atmosphere_pass.cpp, each 0 or 1): on a
+// CPU rasteriser such as llvmpipe both sides of a branch cost, taken or not, so what a frame does
+// not need is compiled out rather than branched around.
+//   SKY_OUTSIDE       the camera is above the top of the atmosphere
+//   SKY_GEOMETRY      another body is inside the shell: pixels showing it march up to it
+//   SKY_ILLUSTRATIVE  illustrative eclipse shadows tint the surface
+
+// The pixel's light from the table at uv: through the air (sky) or on the ground (relit surface).
+void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
+    vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, nu);
+    vec3 third = vec3(textureLod(u_sky_third, uv, 0.0));
+    if (!ground) {
+        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale, 0.0);
+        out_factor = vec4(third, 1.0);
+        return;
+    }
+    vec3 reflectance = (surface && geo.a >= 0.0) ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
+    vec3 tint = vec3(1.0);
+#if SKY_ILLUSTRATIVE
+    if (surface) {  // the region of the surface point, as a display colour
+        vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+        if (hit.w >= 0.0) tint = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances_m.y);
+    }
+#endif
+    out_add = vec4(max(reflectance * third + inscatter, vec3(0.0)) * u_solar_scale * tint, 0.0);
+    out_factor = vec4(0.0, 0.0, 0.0, 1.0);
+}
+
+#if !SKY_OUTSIDE
+// A camera inside the atmosphere: the ray starts at the camera, so (r, mu) are the camera's; no
+// inverse trigonometry per pixel. Without SKY_GEOMETRY nothing but this planet can be drawn in
+// front of the air's far end (the CPU checked that no other body meets the shell), so a ray that
+// meets the ground shows the surface.
+void shade(vec3 v, vec4 geo) {
+    vec3 up = -u_center_dir;
+    float r = max(u_d_m, u_atm.bottom_radius_m + 1.0);
+    float mu = dot(v, up);
+    bool ground = atm_ray_hits_ground(u_atm, r, mu);
+    bool surface = ground;
+#if SKY_GEOMETRY
+    float g = geo.a;
+    if (g >= 0.0) {  // this planet's surface (the body pass's own hit decides), or something in front
+        bool in_front;
+        if (ground) {
+            vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+            surface = hit.w >= 0.0 && g >= sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m) * (1.0 - 1e-3);
+            in_front = !surface;
+        } else {
+            in_front = g < atm_distance_to_top(u_atm, r, mu);
+        }
+        if (in_front) {
+            march_to_geometry(atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun), g);
+            return;
+        }
+    }
+#endif
+    float x = atm_sky_view_x(u_atm, false, u_mu_h, ground, mu);
+    float sin_t = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
+    vec2 uv = atm_sky_view_uv(ground, x, atm_sky_view_cos_phi(v, sin_t, u_sun_perp), u_sky_size);
+    from_table(uv, dot(v, u_sun), ground, surface, geo, v);
+}
+#else
+// A camera outside: the ray enters the top sphere first.
+void shade(vec3 v, vec4 geo) {
     AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
-    if (!st.valid) {  // the ray misses the atmosphere
+    float g = geo.a;
+    if (!st.valid || (g >= 0.0 && g <= st.offset_m)) {  // the ray misses the air, or a body in front of it
         keep_scene();
         return;
     }
-    float g = geo.a;
     // This planet's surface? The body pass's own hit, recomputed with the same code and uniforms
     // (as atmosphere.frag decides it).
     vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
@@ -71,29 +136,17 @@ void main() {
         surface = g < 0.0 || g >= sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m) * (1.0 - 1e-3);
     }
     bool ground = surface || atm_ray_hits_ground(u_atm, st.r_m, st.mu);
-    if (!surface && g >= 0.0) {  // scene geometry in front of the ground or the sky
-        if (g <= st.offset_m) {
-            keep_scene();
-            return;
-        }
-        if (g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)) {
-            march_to_geometry(st, g);
-            return;
-        }
-    }
-    vec2 uv = atm_sky_view_pixel_uv(u_atm, u_d_m, v, u_center_dir, u_sun, st, ground, u_sky_size);
-    vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, st.nu);
-    vec3 third = vec3(textureLod(u_sky_third, uv, 0.0));
-    if (!ground) {
-        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale, 0.0);
-        out_factor = vec4(third, 1.0);
+#if SKY_GEOMETRY
+    if (!surface && g >= 0.0 && g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)) {
+        march_to_geometry(st, g);
         return;
     }
-    vec3 reflectance = (surface && g >= 0.0) ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
-    vec3 tint = vec3(1.0);
-    if (u_ecl.count > 0 && surface) {  // illustrative: the region of the surface point, as a display colour
-        tint = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances_m.y);
-    }
-    out_add = vec4(max(reflectance * third + inscatter, vec3(0.0)) * u_solar_scale * tint, 0.0);
-    out_factor = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
+    from_table(atm_sky_view_pixel_uv(u_atm, u_d_m, v, u_center_dir, u_sun, st, ground, u_sky_size), st.nu, ground,
+               surface, geo, v);
+}
+#endif
+
+void main() {
+    shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), texelFetch(u_geometry, ivec2(gl_FragCoord.xy), 0));
 }

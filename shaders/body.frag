@@ -4,7 +4,9 @@
 // the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres, and a
 // logarithmic depth of that distance for the glare probe's occlusion queries.
 // Eclipse shadows: the sunlight at the surface point (normal * radius, relative to the centre,
-// like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl).
+// like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl),
+// only in the BODY_ECLIPSE variant (slave/passes/body_pass.cpp): on a CPU rasteriser a branch
+// costs whether taken or not, and a body whose atmosphere relights its surface needs none.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;       // unit, channel frame
@@ -36,9 +38,11 @@ void main() {
     vec3 albedo_map = textureLod(u_texture, uv, 0.0).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     vec3 light = vec3(1.0);
+#if BODY_ECLIPSE
     if (u_ecl.count > 0 && cos_i > 0.0) {
         light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances_m.y);
     }
+#endif
     frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
     float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
     frag_geometry = vec4(u_reflectance * albedo_map, distance_m);

@@ -9,13 +9,15 @@
 // it), so no texel ever blends the sky with the ground across the horizon. Within a half the row
 // coordinate x runs from 0 at the horizon (the limb, seen from outside) to 1 and is taken through
 // a square root, which puts the rows where the light changes fastest:
-//   camera inside the atmosphere, zenith angle theta, horizon theta_h (> 90 degrees):
-//     sky    theta = theta_h (1 - x^2)           ground theta = theta_h + (pi - theta_h) x^2
+//   camera inside the atmosphere, view zenith cosine mu, horizon mu_h < 0:
+//     sky    mu = mu_h + (1 - mu_h) x^2           ground mu = mu_h - (1 + mu_h) x^2
 //   camera outside, impact parameter rho (distance of the ray's line from the centre):
-//     sky    rho = R + (top - R) x^2             ground rho = R (1 - x^2)
-// Columns: the azimuth phi in [0, pi] between the view and the Sun about the camera's zenith,
-// linear (the atmosphere is symmetric about the plane of the zenith and the Sun). Texel centres
-// sit on the ends of each range (Bruneton 2017), as in atmosphere_lut_mapping.glsl.
+//     sky    rho = R + (top - R) x^2              ground rho = R (1 - x^2)
+// Columns: the azimuth phi in [0, pi] between the view and the Sun about the camera's zenith (the
+// atmosphere is symmetric about the plane of the zenith and the Sun), as sin(phi / 2), which keeps
+// the columns dense toward the Sun. Texel centres sit on the ends of each range (Bruneton 2017),
+// as in atmosphere_lut_mapping.glsl. Every coordinate comes from cosines and square roots: a
+// pixel's look-up needs no inverse trigonometric function.
 //
 // A texel holds linear sRGB per unit solar irradiance (times the scene's solar scale, scene units):
 //   0  single Rayleigh scattering with its phase at the texel's nu, plus the multiple scattering;
@@ -26,45 +28,44 @@
 //      ground half: the radiance of a white Lambertian ground lit by the Sun and the sky, seen
 //      through the air in front of it (the pixel multiplies it by the surface's reflectance).
 
-// Zenith angle of the ground's horizon seen from radius r (> 90 degrees; 90 on the ground).
-float atm_horizon_zenith_rad(AtmosphereParams a, float r_m) {
-    return acos(ray_sphere_horizon_mu(r_m, a.bottom_radius_m));
-}
-
 bool atm_camera_outside(AtmosphereParams a, float d_m) {
     return d_m > a.top_radius_m;
 }
 
-// Row coordinate x in [0, 1] of a ray within its half; `q` is the zenith angle (inside) or the
-// impact parameter in metres (outside).
-float atm_sky_view_x(AtmosphereParams a, float d_m, bool ground, float q) {
+// The horizon's zenith cosine for the table (the camera radius clamped as atm_ray_start does).
+float atm_sky_view_horizon_mu(AtmosphereParams a, float d_m) {
+    return ray_sphere_horizon_mu(max(d_m, a.bottom_radius_m + 1.0), a.bottom_radius_m);
+}
+
+// Row coordinate x in [0, 1] of a ray within its half; `q` is the view zenith cosine (inside; mu_h
+// the horizon's) or the impact parameter in metres (outside).
+float atm_sky_view_x(AtmosphereParams a, bool outside, float mu_h, bool ground, float q) {
     float R = a.bottom_radius_m;
-    if (atm_camera_outside(a, d_m)) {
+    if (outside) {
         if (ground) return sqrt(clamp((R - q) / R, 0.0, 1.0));
         return sqrt(clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0));
     }
-    float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
-    if (ground) return sqrt(clamp((q - th) / (CUPOLA_PI - th), 0.0, 1.0));
-    return sqrt(clamp((th - q) / th, 0.0, 1.0));
+    if (ground) return sqrt(clamp((mu_h - q) / (1.0 + mu_h), 0.0, 1.0));
+    return sqrt(clamp((q - mu_h) / (1.0 - mu_h), 0.0, 1.0));
 }
 
 // The inverse: q of a row coordinate.
-float atm_sky_view_q(AtmosphereParams a, float d_m, bool ground, float x) {
+float atm_sky_view_q(AtmosphereParams a, bool outside, float mu_h, bool ground, float x) {
     float R = a.bottom_radius_m;
-    if (atm_camera_outside(a, d_m)) {
+    if (outside) {
         if (ground) return R * (1.0 - x * x);
         return R + (a.top_radius_m - R) * x * x;
     }
-    float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
-    if (ground) return th + (CUPOLA_PI - th) * x * x;
-    return th * (1.0 - x * x);
+    if (ground) return mu_h - (1.0 + mu_h) * x * x;
+    return mu_h + (1.0 - mu_h) * x * x;
 }
 
-// Table coordinates of a ray: its half, row coordinate x and azimuth phi_rad.
-vec2 atm_sky_view_uv(bool ground, float x, float phi_rad, vec2 size) {
+// Table coordinates of a ray: its half, row coordinate x and the cosine of its azimuth from the Sun.
+vec2 atm_sky_view_uv(bool ground, float x, float cos_phi, vec2 size) {
     float w = atm_texcoord_from_unit(clamp(x, 0.0, 1.0), 0.5 * size.y);
     float v = ground ? 0.5 * (1.0 - w) : 0.5 * (1.0 + w);
-    return vec2(atm_texcoord_from_unit(clamp(phi_rad / CUPOLA_PI, 0.0, 1.0), size.x), v);
+    float half_angle_sin = sqrt(clamp(0.5 - 0.5 * cos_phi, 0.0, 1.0));  // sin(phi / 2)
+    return vec2(atm_texcoord_from_unit(half_angle_sin, size.x), v);
 }
 
 // The ray of a table coordinate, in the table's frame: the camera on the +z axis at d_m (so the
@@ -72,20 +73,23 @@ vec2 atm_sky_view_uv(bool ground, float x, float phi_rad, vec2 size) {
 // view direction.
 vec3 atm_sky_view_direction(AtmosphereParams a, float d_m, vec2 uv, vec2 size) {
     bool ground = uv.y < 0.5;
+    bool outside = atm_camera_outside(a, d_m);
     float w = ground ? 1.0 - 2.0 * uv.y : 2.0 * uv.y - 1.0;
     float x = clamp(atm_unit_from_texcoord(w, 0.5 * size.y), 0.0, 1.0);
-    float phi = CUPOLA_PI * clamp(atm_unit_from_texcoord(uv.x, size.x), 0.0, 1.0);
-    float q = atm_sky_view_q(a, d_m, ground, x);
+    float s_half = clamp(atm_unit_from_texcoord(uv.x, size.x), 0.0, 1.0);  // sin(phi / 2)
+    float cos_phi = 1.0 - 2.0 * s_half * s_half;
+    float sin_phi = 2.0 * s_half * sqrt(max(1.0 - s_half * s_half, 0.0));
+    float q = atm_sky_view_q(a, outside, atm_sky_view_horizon_mu(a, d_m), ground, x);
     float sin_t;
     float cos_t;
-    if (atm_camera_outside(a, d_m)) {  // zenith angle pi - asin(rho / d)
+    if (outside) {  // zenith angle pi - asin(rho / d)
         sin_t = clamp(q / d_m, 0.0, 1.0);
         cos_t = -sqrt((1.0 - sin_t) * (1.0 + sin_t));
     } else {
-        sin_t = sin(q);
-        cos_t = cos(q);
+        cos_t = clamp(q, -1.0, 1.0);
+        sin_t = sqrt(max((1.0 - cos_t) * (1.0 + cos_t), 0.0));
     }
-    return vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t);
+    return vec3(sin_t * cos_phi, sin_t * sin_phi, cos_t);
 }
 
 vec3 atm_sky_view_sun(float mu_s) {
@@ -132,23 +136,33 @@ AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans,
     return t;
 }
 
-// What a pixel needs to look its ray up: the half, the row coordinate and the azimuth. `st` is the
-// ray's start (atm_ray_start with the same d_m, v, c_hat, sun), `ground` its ground flag.
+// The cosine of a view's azimuth from the Sun about the zenith; sin_t is the sine of the view's
+// angle from the zenith axis, sun_perp the unit component of the Sun direction perpendicular to
+// that axis (0 with the Sun at the zenith or nadir: any azimuth, the table's are all alike then).
+float atm_sky_view_cos_phi(vec3 v, float sin_t, vec3 sun_perp) {
+    return sin_t > 1e-7 ? clamp(dot(v, sun_perp) / sin_t, -1.0, 1.0) : 1.0;
+}
+
+// The unit component of `sun` perpendicular to `up` (or 0), for atm_sky_view_cos_phi.
+vec3 atm_sky_view_sun_perp(vec3 up, vec3 sun) {
+    vec3 p = sun - up * dot(sun, up);
+    float l = length(p);
+    return l > 1e-7 ? p / l : vec3(0.0);
+}
+
+// What a pixel needs to look its ray up, in general (inside or outside): the half, the row
+// coordinate and the azimuth. `st` is the ray's start (atm_ray_start with the same d_m, v, c_hat,
+// sun), `ground` its ground flag.
 vec2 atm_sky_view_pixel_uv(AtmosphereParams a, float d_m, vec3 v, vec3 c_hat, vec3 sun, AtmosphereRayStart st,
                            bool ground, vec2 size) {
     vec3 up = -c_hat;
-    float q;
-    if (atm_camera_outside(a, d_m)) {
-        q = d_m * sin(angle_between_units(v, c_hat));
-    } else {
-        q = acos(clamp(st.mu, -1.0, 1.0));
-    }
-    vec3 vp = v - up * dot(v, up);
-    vec3 sp = sun - up * dot(sun, up);
-    float den = sqrt(dot(vp, vp) * dot(sp, sp));
-    float cos_phi = den > 1e-20 ? dot(vp, sp) / den : 1.0;
-    float phi = acos(clamp(cos_phi, -1.0, 1.0));
-    return atm_sky_view_uv(ground, atm_sky_view_x(a, d_m, ground, q), phi, size);
+    bool outside = atm_camera_outside(a, d_m);
+    // |v x up| = sin(angle(v, up)), free of cancellation for small angles (outside, far away);
+    // outside, rho = d |v x up|.
+    float sin_t = length(cross(v, up));
+    float q = outside ? d_m * sin_t : st.mu;
+    float x = atm_sky_view_x(a, outside, atm_sky_view_horizon_mu(a, d_m), ground, q);
+    return atm_sky_view_uv(ground, x, atm_sky_view_cos_phi(v, sin_t, atm_sky_view_sun_perp(up, sun)), size);
 }
 
 // The pixel's light from the table: the in-scatter (linear sRGB per unit solar irradiance, the

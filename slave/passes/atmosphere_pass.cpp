@@ -53,6 +53,16 @@ glm::vec2 sky_view_inputs(const ChannelView& view, const BodyState& state, const
     return glm::vec2(static_cast<float>(d), static_cast<float>(d > 0.0 ? glm::dot(up / d, sun_dir_world) : 1.0));
 }
 
+// Does a body other than the planet meet the sphere of its atmosphere's top (channel frame, double)?
+bool other_body_in_shell(const FrameContext& frame, const FrameBody& planet, double top_radius_m) {
+    const glm::dvec3 c = planet.sphere.center_dir * planet.sphere.distance_m;
+    for (const FrameBody& b : frame.far_to_near) {
+        if (&b == &planet || b.body->kind == BodyKind::Star) continue;
+        const glm::dvec3 p = b.sphere.center_dir * b.sphere.distance_m;
+        if (glm::length(p - c) < top_radius_m + b.body->radius_m) return true;
+    }
+    return false;
+}
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const BodyConfig& body)
@@ -91,10 +101,18 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
 }
 
 AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows)
-    : atmospheres_(std::move(atmospheres)),
-      shadows_(shadows),
-      program_("fullscreen.vert", "atmosphere.frag"),
-      lookup_program_("fullscreen.vert", "atmosphere_lookup.frag") {}
+    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("fullscreen.vert", "atmosphere.frag") {}
+
+const GlProgram& AtmospherePass::lookup_program(int variant) {
+    auto& p = lookup_programs_[variant & 7];
+    if (!p) {
+        const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
+                                    std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
+                                    std::to_string((variant >> 2) & 1) + "\n";
+        p = std::make_unique<GlProgram>("fullscreen.vert", "atmosphere_lookup.frag", defines);
+    }
+    return *p;
+}
 
 long AtmospherePass::sky_view_renders() const {
     long n = 0;
@@ -115,7 +133,7 @@ int AtmospherePass::prepare(const FrameContext& frame) {
             ++skipped;
             continue;
         }
-        layers_.push_back({&it, atm->second.get()});
+        layers_.push_back({&it, atm->second.get(), other_body_in_shell(frame, it, atm->second->top_radius_m())});
     }
     run_ += static_cast<long>(layers_.size());
     skipped_ += skipped;
@@ -128,24 +146,30 @@ void AtmospherePass::draw(const PassInputs& in, int step) {
     const Layer& l = layers_.at(static_cast<size_t>(step));
     const FrameContext& f = *frame_;
     draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.geometry, shadows_,
-         f.casters_of(l.body->body->id));
+         f.casters_of(l.body->body->id), l.geometry_in_air);
 }
 
 const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::vec2& table_in,
-                                                const shading::EclipseCasters& casters) {
+                                                const shading::EclipseCasters& casters, bool geometry_in_air) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const bool shadowed = casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
     GpuSkyViewTable* table = atm.sky_view();
     if (table && !shadowed) {
         table->update(table_in.x, table_in.y);
-        lookup_program_.use();
+        const shading::AtmosphereParams& a = m.shader_params();
+        const bool outside = shading::atm_camera_outside(a, table_in.x);
+        const bool illustrative = casters.count > 0;
+        const GlProgram& lookup =
+            lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0));
+        lookup.use();
         table->bind(kSkyView);
-        lookup_program_.set("u_sky_phased", static_cast<int>(kSkyView));
-        lookup_program_.set("u_sky_mie", static_cast<int>(kSkyView + 1));
-        lookup_program_.set("u_sky_third", static_cast<int>(kSkyView + 2));
-        lookup_program_.set("u_sky_size", table->size());
-        lookup_program_.set("u_samples", m.quality().view_samples);
-        return lookup_program_;
+        lookup.set("u_sky_phased", static_cast<int>(kSkyView));
+        lookup.set("u_sky_mie", static_cast<int>(kSkyView + 1));
+        lookup.set("u_sky_third", static_cast<int>(kSkyView + 2));
+        lookup.set("u_sky_size", table->size());
+        lookup.set("u_mu_h", shading::atm_sky_view_horizon_mu(a, table_in.x));
+        lookup.set("u_samples", m.quality().view_samples);
+        return lookup;
     }
     ++marched_;
     const atmosphere::ProductionQuality& q = m.quality();
@@ -158,14 +182,14 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
     return program_;
 }
 
-void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const BodyState& state,
-                          const SphereView& sphere, const SunLight& sun, const GlTexture& geometry,
-                          const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
+void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const BodyState& state, const SphereView& sphere,
+                          const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
+                          const shading::EclipseCasters& casters, bool geometry_in_air) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const PlanetSun ps = planet_sun(state, sun, m);
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
-    const GlProgram& p = choose_program(atm, table_in, casters);
+    const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air);
     p.set("u_tangents", view.tangents());
     p.set("u_size", view.size());
     p.set("u_center_dir", glm::vec3(sphere.center_dir));
@@ -173,6 +197,7 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     p.set("u_distances_m", sphere_distances(sphere));
     p.set("u_d_m", static_cast<float>(sphere.distance_m));
     p.set("u_sun", glm::vec3(sun_dir));
+    p.set("u_sun_perp", shading::atm_sky_view_sun_perp(-glm::vec3(sphere.center_dir), glm::vec3(sun_dir)));
     p.set("u_solar_scale", static_cast<float>(ps.solar_scale));
     set_atmosphere_params(p, m.shader_params());
     bind_atmosphere_tables(p, atm, kTables);

@@ -83,22 +83,27 @@ public:
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.
+    // geometry_in_air: another body meets the shell (its pixels are marched).
     void draw(const ChannelView& view, GpuAtmosphere& atmosphere, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-              const shading::EclipseCasters& casters);
+              const shading::EclipseCasters& casters, bool geometry_in_air = true);
 
 private:
     struct Layer {
         const FrameBody* body;
         GpuAtmosphere* atmosphere;
+        bool geometry_in_air;  // another body meets this atmosphere's shell
     };
     // The program for this draw: the look-up, or the march (set up with its own uniforms).
     // table_in: the sky-view table's (camera distance, Sun zenith cosine).
     const GlProgram& choose_program(GpuAtmosphere& atmosphere, const glm::vec2& table_in,
-                                    const shading::EclipseCasters& casters);
+                                    const shading::EclipseCasters& casters, bool geometry_in_air);
+    // The look-up program of a variant (bits: outside, geometry in the air, illustrative), compiled on first use.
+    const GlProgram& lookup_program(int variant);
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
-    GlProgram program_, lookup_program_;
+    GlProgram program_;
+    std::unique_ptr<GlProgram> lookup_programs_[8];
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws

@@ -13,7 +13,9 @@ double sun_irradiance(const SunLight& sun, double d_m) {
     return atmosphere::sun_irradiance_scene_units(sun.radiance, sun.radius_m, sun.limb_u, d_m);
 }
 
-BodyPass::BodyPass(const SceneConfig& scene) : program_("sphere.vert", "body.frag") {
+BodyPass::BodyPass(const SceneConfig& scene)
+    : shadowed_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n"),
+      plain_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n") {
     for (const auto& b : scene.bodies) {
         if (b.kind == BodyKind::Star) continue;
         const BodyImage img = load_body_image(b.texture);
@@ -31,16 +33,17 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
     const glm::dmat3 channel_to_body = glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world;
 
-    program_.use();
-    program_.set("u_channel_to_body", glm::mat3(channel_to_body));
-    program_.set("u_sun_dir", glm::vec3(sun_dir));
-    program_.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
-    program_.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
-    program_.set("u_texture", 0);
+    const GlProgram& program = casters.count > 0 && !body.atmosphere.present ? shadowed_ : plain_;
+    program.use();
+    program.set("u_channel_to_body", glm::mat3(channel_to_body));
+    program.set("u_sun_dir", glm::vec3(sun_dir));
+    program.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
+    program.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
+    program.set("u_texture", 0);
     tex->second->bind(0);
-    shadows.apply(program_, casters, 1);
+    shadows.apply(program, casters, 1);
     vao_.bind();
-    draw_sphere(program_, view, sphere);
+    draw_sphere(program, view, sphere);
     gl::check("body pass (" + body.name + ")");
 }
 

@@ -30,7 +30,9 @@ public:
               const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
 
 private:
-    GlProgram program_;
+    // With eclipse shadows (a body without an atmosphere, in a shadow) and without: the atmosphere
+    // pass relights the surface of a body that has one, shadows included.
+    GlProgram shadowed_, plain_;
     GlEmptyVertexArray vao_;
     std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
 };
