@@ -58,6 +58,11 @@ uint64_t AsyncFrameWriter::written() const {
     return written_;
 }
 
+std::vector<uint64_t> AsyncFrameWriter::written_frames() const {
+    std::lock_guard lock(mutex_);
+    return {written_frames_.begin(), written_frames_.end()};
+}
+
 uint64_t AsyncFrameWriter::failed() const {
     std::lock_guard lock(mutex_);
     return failed_;
@@ -95,6 +100,8 @@ void AsyncFrameWriter::run() {
         lock.lock();
         busy_ = false;
         ++(ok ? written_ : failed_);
+        if (ok) written_frames_.push_back(job.meta.frame);
+        if (written_frames_.size() > kWrittenKept) written_frames_.pop_front();
         lock.unlock();
         changed_.notify_all();
     }

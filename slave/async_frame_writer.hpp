@@ -3,6 +3,7 @@
 // render at 1024^2) overlaps the next frame's render. The queue is short: when it is full the
 // render thread waits, so memory stays bounded and no frame is ever dropped.
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <mutex>
 #include <string>
@@ -31,6 +32,10 @@ public:
 
     uint64_t written() const;
     uint64_t failed() const;
+    // The last frames written (at most kWrittenKept), oldest first, in the order their files
+    // appeared: the order they were queued.
+    std::vector<uint64_t> written_frames() const;
+    static constexpr size_t kWrittenKept = 256;
 
 private:
     struct Job {
@@ -53,6 +58,7 @@ private:
     bool busy_ = false;
     bool stopping_ = false;
     uint64_t written_ = 0;
+    std::deque<uint64_t> written_frames_;
     uint64_t failed_ = 0;
     std::thread thread_;
 };

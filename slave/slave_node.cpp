@@ -206,9 +206,12 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     meta.sim_time_s = snap.sim_time_s;
     meta.snapshot_hash = job.hash;
     meta.renderer = gl.context.info().renderer;
-    // The warp pass and every sink's take; encoding files overlaps the next frame's render, and
-    // write_ms is the time spent waiting for room in the files sink's queue.
-    const double wait_ms = output.take(renderer, meta, snap.settings.exposure);
+    // The warp pass and every sink's take, then settle: "ready N" goes out only once frame N's
+    // files are on disk. The master counts a frame done when every channel reported it, and a
+    // channel that restarts renders the master's current frame, not older ones (master/session/
+    // master_session.cpp): a report sent before the write would lose the frame to a crash in
+    // between. write_ms is the time from the take to the files written (0 without a files sink).
+    const double wait_ms = output.take(renderer, meta, snap.settings.exposure) + output.settle();
 
     FrameReport rep;
     rep.render_ms = std::chrono::duration<float, std::milli>(t1 - t0).count();

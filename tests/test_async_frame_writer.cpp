@@ -32,6 +32,7 @@ TEST(AsyncFrameWriter, EveryFrameReachesTheDisk) {
         w.flush();
         EXPECT_EQ(w.written(), 6u);
         EXPECT_EQ(w.failed(), 0u);
+        EXPECT_EQ(w.written_frames(), (std::vector<uint64_t>{0, 1, 2, 3, 4, 5}));  // in the order queued
     }
     for (uint64_t f = 0; f < 6; ++f) {
         FrameMetadata m;

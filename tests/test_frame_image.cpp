@@ -26,7 +26,7 @@ Image gradient_image(int w, int h) {
             float* p = im.pixel(x, y);
             p[0] = static_cast<float>(x) / (w - 1);                      // 0..1
             p[1] = static_cast<float>(y) / (h - 1) * 0.5f;               // 0..0.5
-            p[2] = 0.001f + 3.0f * static_cast<float>(x * y) / (w * h);  // beyond 1: clipped in PNG
+            p[2] = 0.001f + 3.0f * static_cast<float>(x * y) / (w * h);  // beyond 1: gamut-mapped in PNG
             p[3] = (x + y) % 3 == 0 ? 1.0f : 0.5f;
         }
     return im;
@@ -102,14 +102,15 @@ TEST(FrameImage, WritesPngAndExrWithMetadataAndReadsThemBack) {
             const float* e = exr.pixel(x, y);
             const float* r = exr_radiance.pixel(x, y);
             const float* p = png.pixel(x, y);
+            const glm::vec3 shown = display_color(glm::vec3(s[0], s[1], s[2]) * static_cast<float>(exposure));
             for (int c = 0; c < 3; ++c) {
                 const float exposed = static_cast<float>(s[c] * exposure);
                 // EXR: linear times exposure, in float.
                 EXPECT_FLOAT_EQ(e[c], exposed) << x << "," << y << "," << c;
                 EXPECT_NEAR(r[c], s[c], std::abs(s[c]) * 1e-6 + 1e-12);
-                // PNG: decoded and divided by the recorded exposure; the exposed value is clipped at 1.
-                const float clipped = std::min(exposed, 1.0f);
-                const float enc = linear_to_srgb(clipped);
+                // PNG: decoded and divided by the recorded exposure; the exposed colour is mapped into
+                // the unit cube (test_gamut_map checks how).
+                const float enc = linear_to_srgb(shown[c]);
                 // One 8-bit step of sRGB around the encoded value, back in linear, over the exposure.
                 const float lo = srgb_to_linear(enc - 0.5f / 255 - 1e-6f) / static_cast<float>(exposure);
                 const float hi = srgb_to_linear(enc + 0.5f / 255 + 1e-6f) / static_cast<float>(exposure);
@@ -170,7 +171,11 @@ TEST(FrameImage, HugeValuesClampInsteadOfBecomingInfinite) {
     const Image png = read_image(paths[1]);
     for (float v : png.rgba) EXPECT_TRUE(std::isfinite(v)) << v;
     EXPECT_FLOAT_EQ(png.pixel(0, 0)[0], 1.0f);
-    EXPECT_FLOAT_EQ(png.pixel(1, 0)[0], 0.0f);
+    EXPECT_FLOAT_EQ(png.pixel(1, 0)[0], 1.0f);  // brighter than white: white, the negative red too
+    // NaN counts as 0, as in the EXR: (0, 0.5, 2) mapped at its luminance.
+    const float* nan_px = png.pixel(2, 0);
+    EXPECT_NEAR(0.2126f * nan_px[0] + 0.7152f * nan_px[1] + 0.0722f * nan_px[2], 0.7152f * 0.5f + 0.0722f * 2.0f,
+                0.01f);
 
     // Exposure multiplies the stored value (no half-float ceiling any more).
     Image one;

@@ -201,7 +201,8 @@ TEST(OutputSinks, FilesOnlyWritesTheChannelRenderAsBefore) {
     output.take(renderer, meta_of(snap), 2.0e3);
     output.present(4);
     EXPECT_EQ(output.finish(), 0u);
-    EXPECT_EQ(renderer.read_backs() - before, 1u);
+    EXPECT_EQ(renderer.read_backs(), before);  // not the synchronous read-back...
+    EXPECT_EQ(output.read_backs(), 1u);        // ...one asynchronous one, shared by the PNG and the EXR
     for (const char* ext : {"png", "exr"}) {
         const Image a = read_image(dir + "/" + frame_file_name(4, ext)),
                     b = read_image(ref + "/" + frame_file_name(4, ext));
@@ -345,4 +346,90 @@ TEST(OutputSinksConfig, ChannelSinksOverTheClusters) {
                          {"output", {{"sink", "kms"}, {"kms", {{"mode", "big"}}}}}}}},
                       {"dome", {{"require_full_coverage", false}}}});
     EXPECT_NE(bad.find("channels[0].output.kms.mode"), std::string::npos) << bad;
+}
+
+namespace {
+
+// A headless context for the files sink on its own.
+struct HeadlessChannel {
+    MoonView v;
+    OutputSurface surface{SinkConfig{}, -1, kWidth, kHeight};
+    SceneRenderer renderer{v.cluster, v.channel, v.scene};
+    uint64_t sync_reads = 0;  // ProjectorFrame's counter of synchronous reads (none expected)
+};
+
+Image read_file_raw(const std::string& path) {
+    FrameMetadata m;
+    return read_image(path, &m);
+}
+
+}  // namespace
+
+// The files sink reads the channel render back through its ring of pixel buffers: take() only
+// queues the read (at most two frames wait), the frames come out in the order taken, and each
+// file holds exactly what the synchronous glReadPixels of the same frame gives (write_frame of
+// read_back()), for frames that differ from each other.
+TEST(OutputSinks, FilesSinkPixelBuffersKeepOrderAndMatchTheSynchronousRead) {
+    unsetenv("DISPLAY");
+    HeadlessChannel h;
+    const std::string dir = test::scratch_dir("OutputSinks_pbo"), ref = test::scratch_dir("OutputSinks_pbo_ref");
+    constexpr float kExposure = 2.0e3f;
+    {
+        FilesSink files(dir, {"exr", "png"}, 2);
+        for (uint64_t frame = 1; frame <= 6; ++frame) {
+            const Snapshot snap = h.v.snapshot(frame, kExposure);
+            h.renderer.draw(snap);
+            write_frame(ref, h.renderer.read_back(), meta_of(snap), {"exr", "png"}, kExposure);
+            files.take(ProjectorFrame(h.renderer, nullptr, meta_of(snap), kExposure, h.sync_reads));
+            EXPECT_LE(files.frames_pending(), 2u) << "frame " << frame;
+            EXPECT_GE(files.frames_pending(), 1u) << "take() should not wait for its own read";
+        }
+        EXPECT_EQ(files.read_backs(), 6u);  // one float read per frame, shared by the EXR and the PNG
+        EXPECT_EQ(files.finish(), 0u);
+        EXPECT_EQ(files.frames_pending(), 0u);
+        EXPECT_EQ(files.written_frames(), (std::vector<uint64_t>{1, 2, 3, 4, 5, 6}));
+    }
+    EXPECT_EQ(h.sync_reads, 0u);
+    for (uint64_t frame = 1; frame <= 6; ++frame)
+        for (const char* ext : {"exr", "png"}) {
+            FrameMetadata m;
+            const Image got = read_image(dir + "/" + frame_file_name(frame, ext), &m);
+            EXPECT_EQ(m.frame, frame);
+            EXPECT_EQ(got.rgba, read_file_raw(ref + "/" + frame_file_name(frame, ext)).rgba) << frame << " " << ext;
+        }
+    EXPECT_NE(read_file_raw(dir + "/" + frame_file_name(1, "exr")).rgba,
+              read_file_raw(dir + "/" + frame_file_name(2, "exr")).rgba)
+        << "the frames should differ, or the order check proves nothing";
+}
+
+// When the warp pass ran, the EXR is read as RGBA float from its linear target and the PNG as
+// RGBA8 from its encoded target (a quarter of the bytes), both through pixel buffers: the files
+// equal the warp pass's synchronous reads, bit for bit.
+TEST(OutputSinks, FilesSinkReadsTheProjectorFrameInTheFormatsItStores) {
+    unsetenv("DISPLAY");
+    HeadlessChannel h;
+    const std::string dir = test::scratch_dir("OutputSinks_pbo_warp");
+    constexpr float kExposure = 2.0e3f;
+    WarpPass warp(std::nullopt, kWidth, kHeight);
+    std::vector<Image> linear;
+    std::vector<std::vector<uint8_t>> encoded;
+    {
+        FilesSink files(dir, {"exr", "png"}, 1);
+        for (uint64_t frame = 1; frame <= 3; ++frame) {
+            const Snapshot snap = h.v.snapshot(frame, kExposure);
+            h.renderer.draw(snap);
+            warp.draw(h.renderer.color().id(), kExposure);
+            linear.push_back(warp.read_linear());
+            encoded.push_back(warp.read_encoded());
+            files.take(ProjectorFrame(h.renderer, &warp, meta_of(snap), kExposure, h.sync_reads));
+        }
+        EXPECT_EQ(files.read_backs(), 6u);  // a float and a byte read per frame
+        EXPECT_EQ(files.finish(), 0u);
+    }
+    for (uint64_t frame = 1; frame <= 3; ++frame) {
+        const Image exr = read_file_raw(dir + "/" + frame_file_name(frame, "exr"));
+        EXPECT_EQ(exr.rgba, linear[frame - 1].rgba) << frame;
+        const EncodedImage png = read_bytes(dir + "/" + frame_file_name(frame, "png"));
+        EXPECT_EQ(png.rgba, encoded[frame - 1]) << frame;
+    }
 }

@@ -3,6 +3,8 @@
 // test_warp_pass compares the two).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "image/frame_image.hpp"
@@ -24,11 +26,20 @@ TEST(SharedProjectorBlend, BlackLiftKeepsWhiteAndRaisesBlack) {
     EXPECT_FLOAT_EQ(sh::projector_black_lift(sh::vec3(0.5f), 0.0f).z, 0.5f);
 }
 
-TEST(SharedProjectorBlend, ContentAboveWhiteClipsBeforeTheBlend) {
-    const sh::vec3 out = sh::projector_blend(sh::vec3(3.0f, -1.0f, 1.0f), 0.5f, 1.0f, 0.0f);
-    EXPECT_FLOAT_EQ(out.x, 0.5f);
-    EXPECT_FLOAT_EQ(out.y, 0.0f);
-    EXPECT_FLOAT_EQ(out.z, 0.5f);
+TEST(SharedProjectorBlend, ContentOutsideTheRangeIsMappedBeforeTheBlend) {
+    // Above white and negative at once: mapped at constant luminance, then blended.
+    const sh::vec3 c(1.6f, 0.45f, -0.3f);
+    const float y = sh::rec709_luminance(c);
+    const sh::vec3 out = sh::projector_blend(c, 0.5f, 1.0f, 0.0f);
+    EXPECT_NEAR(sh::rec709_luminance(out), 0.5f * y, 1e-6);
+    EXPECT_GE(std::min(out.x, std::min(out.y, out.z)), 0.0f);
+    EXPECT_LE(std::max(out.x, std::max(out.y, out.z)), 0.5f + 1e-6f);
+    // Above white everywhere: white, then blended.
+    const sh::vec3 white = sh::projector_blend(sh::vec3(3.0f, 2.0f, 1.5f), 0.5f, 1.0f, 0.0f);
+    EXPECT_FLOAT_EQ(white.x, 0.5f);
+    EXPECT_FLOAT_EQ(white.z, 0.5f);
+    // No luminance at all: black.
+    EXPECT_FLOAT_EQ(sh::projector_blend(sh::vec3(3.0f, -1.0f, 1.0f), 0.5f, 1.0f, 0.0f).x, 0.0f);
 }
 
 TEST(SharedProjectorBlend, GammaEncodeAndDecodeAreInverse) {

@@ -16,6 +16,8 @@
 
 #include <unistd.h>
 
+#include "shading/shared_shading.hpp"
+
 namespace cupola {
 
 namespace fs = std::filesystem;
@@ -127,8 +129,9 @@ void write_one(const fs::path& final_path, const std::string& format, const Imag
         spec.attribute("oiio:UnassociatedAlpha", 1);
         bdata.resize(n);
         for (size_t i = 0; i < n; i += 4) {
+            const glm::vec3 shown = display_color(glm::vec3(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]) * ex);
             for (int c = 0; c < 3; ++c)
-                bdata[i + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(image.rgba[i + c] * ex) * 255.0f));
+                bdata[i + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(shown[c]) * 255.0f));
             bdata[i + 3] = static_cast<unsigned char>(std::lround(clamp01(image.rgba[i + 3]) * 255.0f));
         }
         data = bdata.data();
@@ -359,6 +362,13 @@ std::string write_encoded_png(const std::string& dir, const EncodedImage& image,
 Image read_image(const std::string& path, FrameMetadata* meta) { return read_impl(path, meta, false); }
 
 Image read_image_radiance(const std::string& path, FrameMetadata* meta) { return read_impl(path, meta, true); }
+
+// A NaN component counts as 0 (as in the EXR), the rest is mapped.
+glm::vec3 display_color(const glm::vec3& linear) {
+    const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
+                           std::isnan(linear.z) ? 0.0f : linear.z);
+    return shading::gamut_map_to_unit_cube(finite);
+}
 
 float linear_to_srgb(float linear) {
     const float x = clamp01(linear);

@@ -1,11 +1,15 @@
 #pragma once
 // Channel frames and domemasters on disk, written and read with OpenImageIO.
 //  - EXR: 32-bit float RGBA, linear scene radiance times exposure (no tone mapping).
-//  - PNG: 8-bit sRGB RGBA after the display transform (exposure, clamp, sRGB encode).
+//  - PNG: 8-bit sRGB RGBA after the display transform: exposure, the gamut map into [0, 1]^3
+//    (display_color: constant luminance and dominant wavelength, never a per-channel clip of a
+//    negative value), sRGB encode. docs/COLOR.md: the primaries (ITU-R BT.709, D65) and units.
 // Every file carries metadata attributes so that sync can be checked from the files alone:
 //   cupola:channel (int), cupola:channel_name, cupola:frame (int, as string if > 2^31),
 //   cupola:sim_time (string, %.17g seconds since J2000), cupola:snapshot_hash (16 hex digits),
 //   cupola:renderer (GL_RENDERER string).
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -61,7 +65,10 @@ Image read_image(const std::string& path, FrameMetadata* meta = nullptr);
 // output exposure again.
 Image read_image_radiance(const std::string& path, FrameMetadata* meta = nullptr);
 
-// The display transform used for PNG: sRGB encode of clamp(exposure * linear).
+// The display transform used for PNG: linear_to_srgb of display_color(exposure * linear).
+// display_color: linear BT.709 RGB (any values, negative ones included) mapped into the unit cube
+// by shaders/shared/gamut_map.glsl (a NaN component counts as 0); unchanged when inside.
+glm::vec3 display_color(const glm::vec3& linear);
 float linear_to_srgb(float linear);
 float srgb_to_linear(float encoded);
 

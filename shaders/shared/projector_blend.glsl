@@ -15,9 +15,11 @@ vec3 projector_black_lift(vec3 c, float beta) {
     return c * (1.0 - beta) + vec3(beta);
 }
 
-// c: the content's linear value (radiance x exposure); above the projector's white it clips to 1.
+// c: the content's linear value (radiance x exposure); what lies outside the projector's range
+// [0, 1]^3 (above its white, or a negative component: out of gamut) is first mapped into it at
+// constant luminance (gamut_map.glsl), never clipped per channel.
 vec3 projector_blend(vec3 c, float alpha, float intensity, float beta) {
-    return projector_black_lift(clamp(c, 0.0, 1.0) * (alpha * intensity), beta);
+    return projector_black_lift(gamut_map_to_unit_cube(c) * (alpha * intensity), beta);
 }
 
 float projector_gamma_encode(float linear, float gamma) {

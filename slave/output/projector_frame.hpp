@@ -1,10 +1,12 @@
 #pragma once
 // One frame as the output stage's sinks see it: the channel render and, when the warp pass ran,
-// the projector frame it made. Every read-back goes through here and is counted, so that a slave
-// whose sinks need no pixels on the CPU provably reads none (glReadPixels costs a GPU stall).
+// the projector frame it made. The synchronous reads here are counted (ProjectorOutput::read_backs,
+// with the files sink's asynchronous ones), so that a slave whose sinks need no pixels on the CPU
+// provably reads none.
 #include <cstdint>
 
 #include "image/frame_image.hpp"
+#include "gl/gl_texture.hpp"
 #include "output/warp_pass.hpp"
 #include "scene_renderer.hpp"
 
@@ -31,6 +33,14 @@ public:
     // What live sinks blit to their surface: the warp pass's encoded RGBA8 framebuffer (GL row 0
     // at the bottom) and its size; warped() only.
     unsigned encoded_framebuffer() const { return warp().encoded_framebuffer(); }
+    // The GL textures behind the reads above, for asynchronous read-backs (slave/output/files_sink):
+    // the channel render (RGBA32F), and, warped() only, the projector frame's linear (RGBA32F) and
+    // encoded (RGBA8) targets; GL row 0 at the bottom.
+    unsigned channel_texture() const { return channel_.color().id(); }
+    int channel_width() const { return channel_.color().width(); }
+    int channel_height() const { return channel_.color().height(); }
+    unsigned linear_texture() const { return warp().linear_texture(); }
+    unsigned encoded_texture() const { return warp().encoded_texture(); }
     int width() const { return warp().width(); }
     int height() const { return warp().height(); }
 

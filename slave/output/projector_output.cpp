@@ -46,6 +46,8 @@ uint64_t ProjectorOutput::present(uint64_t) {
     return monotonic_ns();
 }
 
+double ProjectorOutput::settle() { return files_ ? files_->settle() : 0.0; }
+
 uint64_t ProjectorOutput::finish() {
     uint64_t failed = 0;
     for (const auto& sink : sinks_) failed += sink->finish();

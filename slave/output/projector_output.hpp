@@ -4,7 +4,7 @@
 //  1. take(): the warp pass runs when a calibration is given or a live sink needs the encoded
 //     projector frame; then every sink takes the frame (the files sink queues it for writing,
 //     live sinks blit it into their back buffer). Nothing is read back unless a sink asks:
-//     window or KMS alone read nothing.
+//     window or KMS alone read nothing; the files sink reads asynchronously (pixel buffers).
 //  2. present(): every live sink swaps (FramePresenter), at the swap lock's "present N".
 #include <memory>
 #include <optional>
@@ -41,12 +41,17 @@ public:
     // Phase 2: swaps every live sink; CLOCK_MONOTONIC ns just after.
     uint64_t present(uint64_t frame) override;
     bool has_live_output() const override { return live_; }
+    // Every frame taken is on disk (or counted failed): the files sink's pending read-backs are
+    // collected and written. Returns the milliseconds it waited (0 without a files sink).
+    double settle();
     // Waits until every frame taken is done; returns the frames that failed (not written).
     uint64_t finish();
 
     std::vector<std::string> sink_names() const;
-    // Read-backs of the warp pass's targets (the channel render's: SceneRenderer::read_backs()).
-    uint64_t read_backs() const { return read_backs_; }
+    // Read-backs of the output stage: the files sink's (asynchronous, of the channel render or
+    // the warp pass's targets) and any synchronous one through ProjectorFrame. SceneRenderer's own
+    // read_back() (render()) counts in SceneRenderer::read_backs(). Window and KMS read nothing.
+    uint64_t read_backs() const { return read_backs_ + (files_ ? files_->read_backs() : 0); }
     uint64_t presents() const { return presents_; }
     bool warps() const { return warp_ != nullptr; }
 

@@ -183,6 +183,8 @@ void WarpPass::draw(unsigned content_texture, double exposure) {
 
 unsigned WarpPass::linear_framebuffer() const { return gpu_->linear_fbo; }
 unsigned WarpPass::encoded_framebuffer() const { return gpu_->encoded_fbo; }
+unsigned WarpPass::linear_texture() const { return gpu_->linear->id(); }
+unsigned WarpPass::encoded_texture() const { return gpu_->encoded; }
 int WarpPass::width() const { return width_; }
 int WarpPass::height() const { return height_; }
 

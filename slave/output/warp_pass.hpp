@@ -73,6 +73,8 @@ public:
 
     unsigned linear_framebuffer() const;
     unsigned encoded_framebuffer() const;
+    unsigned linear_texture() const;   // GL texture name of the linear target (RGBA32F)
+    unsigned encoded_texture() const;  // GL texture name of the encoded target (RGBA8)
     int width() const;
     int height() const;
 
