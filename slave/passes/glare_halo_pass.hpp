@@ -2,9 +2,10 @@
 // The glare's wide, smooth halo at reduced resolution, before the glare pass (glare_pass.hpp)
 // in the pass list. The glare PSF (Spencer et al. 1995, shared/glare_psf.glsl) is split three
 // ways, which sum to it exactly:
-//   - the core: the part without azimuth (glare_psf_smooth) within a few degrees of the source,
-//     where it is steep, fading out (glare_core_share) between core_rad().x and .y -- drawn at
-//     full resolution by the glare pass on a billboard only as large as the core;
+//   - the core: the part without azimuth (glare_psf_smooth) near the source, where it is steep,
+//     fading out (glare_core_share) between core_rad().x and .y (at least kCoreTexels halo
+//     texels: 10.7 and 21.5 deg in a 512-pixel, 90-degree channel at 1/4) -- drawn at full
+//     resolution by the glare pass on a billboard only as large as the core;
 //   - the halo: the rest of that part, zero near the source and slowly varying beyond -- drawn
 //     here into a target of its own at 1/glare.halo_downsample of the resolution per axis
 //     (GlareHaloGrid, with a guard band beyond the channel's edges), and added by the glare pass
