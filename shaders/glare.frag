@@ -1,6 +1,7 @@
 #version 450 core
-// Glare of one source (Ekelin & Fernqvist 2009, sections 2.3 and 3.1; Spencer et al. 1995,
-// shared/glare_psf.glsl):
+// Glare of one source evaluated per pixel: the full-resolution path (glare.halo_downsample 1)
+// and the reference of the split one (glare_halo.frag, glare_core.frag, glare_rays.vert/.frag).
+// Ekelin & Fernqvist 2009, sections 2.3 and 3.1; Spencer et al. 1995 (shared/glare_psf.glsl):
 // bloom, lenticular halo and ciliary-corona streaks, added to the linear HDR image before any
 // tone mapping. The billboard (sphere.vert's corners) only bounds the work: the radiance is a
 // function of the view direction alone -- the angle from the glare centre and the azimuth in
@@ -17,12 +18,8 @@ layout(location = 0) out vec4 frag_color;
 
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
-    // The rays are thin; where one is narrower than about a pixel, point sampling would alias
-    // them (shimmer as the glare moves), so their contrast fades there. The streaks' mean is 1
-    // at any contrast, so the glare's energy does not change.
+    // The rays' contrast fades where they are narrower than about a pixel (glare_ray_contrast).
     GlareParams p = u_glare;
-    float pixel_rad = length(fwidth(v));
-    float ray_rad = angle_between_units(v, u_center) * (2.0 * CUPOLA_PI / max(p.streak_count, 2.0)) * 0.2;
-    p.streak_contrast *= clamp((ray_rad / max(pixel_rad, 1e-9) - 0.5) / 1.5, 0.0, 1.0);
+    p.streak_contrast = glare_ray_contrast(u_glare, angle_between_units(v, u_center), length(fwidth(v)));
     frag_color = vec4(glare_radiance(p, v, u_center, u_e1, u_e2, u_irradiance), 0.0);
 }

@@ -12,6 +12,7 @@
 #include "frame_targets.hpp"
 #include "passes/atmosphere_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/glare_halo_pass.hpp"
 #include "passes/glare_pass.hpp"
 #include "passes/glare_probe.hpp"
 #include "passes/painter_pass.hpp"
@@ -83,8 +84,12 @@ struct SceneRenderer::Impl {
             glare_probe = &add(std::make_unique<GlareProbe>(cluster, ch, scene, painter.bodies(), shadows));
         // The atmospheres, one draw per body in view, far to near: colour and G-buffer in, colour out.
         if (!atm.empty()) atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows));
-        // The glare, last, from the cluster-wide visibility: colour, additive.
-        if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe));
+        // The glare's halo at reduced resolution into its own target, then the glare, last, from the
+        // cluster-wide visibility: colour, additive.
+        GlareHaloPass* halo = nullptr;
+        if (scene.glare.enabled && scene.glare.halo_downsample > 1)
+            halo = &add(std::make_unique<GlareHaloPass>(scene, *glare_probe));
+        if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
         // above, which are then skipped (render()); the passes after it (the output) draw it.
         pattern = &add(std::make_unique<PatternPass>(cluster, ch));

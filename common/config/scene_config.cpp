@@ -87,6 +87,8 @@ GlareConfig read_glare(const JsonReader& g) {
     c.min_display = g.declared_number("min_display");
     c.max_sources = static_cast<int>(g.declared_integer("max_sources"));
     c.probe_size = static_cast<int>(g.declared_integer("probe_size"));
+    c.halo_downsample = static_cast<int>(g.declared_integer("halo_downsample"));
+    if (c.halo_downsample & (c.halo_downsample - 1)) g.fail("halo_downsample", "must be 1, 2, 4 or 8");
     g.reject_unknown_keys();
     return c;
 }

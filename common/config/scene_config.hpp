@@ -101,8 +101,9 @@ struct GlareConfig {
     // Stars and planets get a glare when its display value one degree from them (irradiance x
     // exposure x PSF) reaches min_display; it fades in up to twice that, so nothing pops.
     double min_display = 2e-3;
-    int max_sources = 8;  // the brightest sources, the Sun first
-    int probe_size = 64;  // occlusion-query probe, pixels per side
+    int max_sources = 8;      // the brightest sources, the Sun first
+    int probe_size = 64;      // occlusion-query probe, pixels per side
+    int halo_downsample = 4;  // the halo at 1/this resolution per axis (1: all at full resolution)
 };
 
 struct SceneConfig {

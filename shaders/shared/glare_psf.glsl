@@ -62,22 +62,39 @@ float glare_hash(float x) {
 //   streaks = (1 - c) + c h tri / 0.05
 // has mean exactly 1 over phi at every phase: the rays move the flare's energy, never add to it,
 // and the animation never pulses the total.
-float glare_streaks(GlareParams p, float phi_rad) {
-    float n = max(2.0, 2.0 * floor(0.5 * p.streak_count + 0.5));
-    float c = clamp(p.streak_contrast, 0.0, 1.0);
-    float x = fract(phi_rad * (0.5 / CUPOLA_PI)) * n;  // position in cells, [0, n]
-    float cell = floor(x);
-    float local = x - cell;  // [0, 1)
+// The number of rays: streak_count rounded to an even number, at least 2.
+float glare_ray_cells(GlareParams p) { return max(2.0, 2.0 * floor(0.5 * p.streak_count + 0.5)); }
+
+// Ray `cell` (an integer 0 .. glare_ray_cells - 1): its centre within the cell, in cells (in
+// [0.1, 0.9]), and its brightness h at the phase, in [0, 1].
+vec2 glare_ray(GlareParams p, float cell) {
     float centre = 0.1 + 0.8 * glare_hash(cell);
-    float tri = max(0.0, 1.0 - abs(local - centre) * 10.0);
     float pair = floor(0.5 * cell);
     float sgn = (cell - 2.0 * pair) > 0.5 ? -1.0 : 1.0;
     float rate = 0.05 + 0.15 * glare_hash(pair + 317.0);  // cycles per unit phase
     float offset = glare_hash(pair + 631.0);
     // fract first: sin gets an argument in [0, 2 pi) whatever the phase (GPU sin is poor far out).
     float s = sin(2.0 * CUPOLA_PI * fract(p.phase * rate + offset));
-    float h = 0.5 + 0.5 * sgn * s;
-    return (1.0 - c) + c * h * tri * 20.0;  // 20 = 1 / 0.05
+    return vec2(centre, 0.5 + 0.5 * sgn * s);
+}
+
+float glare_streaks(GlareParams p, float phi_rad) {
+    float n = glare_ray_cells(p);
+    float c = clamp(p.streak_contrast, 0.0, 1.0);
+    float x = fract(phi_rad * (0.5 / CUPOLA_PI)) * n;  // position in cells, [0, n]
+    float cell = floor(x);
+    float local = x - cell;  // [0, 1)
+    vec2 ray = glare_ray(p, cell);
+    float tri = max(0.0, 1.0 - abs(local - ray.x) * 10.0);
+    return (1.0 - c) + c * ray.y * tri * 20.0;  // 20 = 1 / 0.05
+}
+
+// The rays' contrast where a ray is pixel_rad wide on the display: the rays are thin, and where
+// one is narrower than about a pixel point sampling would alias it (shimmer as the glare moves),
+// so its contrast fades there. The streaks' mean is 1 at any contrast, so the energy stays.
+float glare_ray_contrast(GlareParams p, float theta_rad, float pixel_rad) {
+    float ray_rad = theta_rad * (2.0 * CUPOLA_PI / max(p.streak_count, 2.0)) * 0.2;
+    return p.streak_contrast * clamp((ray_rad / max(pixel_rad, 1e-9) - 0.5) / 1.5, 0.0, 1.0);
 }
 
 // A Gaussian ring of radius theta0_rad and sigma w_rad on the sphere, per sr, integral 1. The
@@ -137,4 +154,40 @@ vec3 glare_radiance(GlareParams p, vec3 v, vec3 center, vec3 e1, vec3 e2, vec3 i
     float y = dot(v, e2);
     float phi = (abs(x) + abs(y) > 1e-20) ? atan(y, x) : 0.0;  // GLSL's atan(0, 0) is undefined
     return irradiance * glare_psf(p, theta, phi);
+}
+
+// The glare split for drawing at two resolutions (slave/passes/glare_halo_pass.hpp): glare_psf
+// is exactly
+//   glare_psf_smooth(p, theta) + glare_ray_peak(p, theta) * h * tri
+// with h and tri of the ray at phi (glare_streaks): the smooth part has no azimuth at all, the
+// rays are nonzero only inside their wedges (a fifth of the circle).
+vec3 glare_psf_smooth(GlareParams p, float theta_rad) {
+    if (theta_rad >= p.extent_rad) {
+        return vec3(0.0);
+    }
+    float fade = 1.0 - smoothstep(0.85 * p.extent_rad, p.extent_rad, theta_rad);
+    float hf = clamp(p.halo_fraction, 0.0, 1.0);
+    float c = clamp(p.streak_contrast, 0.0, 1.0);
+    float radial = glare_bloom(theta_rad) + glare_flare(theta_rad) * (1.0 - hf) * (1.0 - c);
+    vec3 rgb = vec3(radial) + glare_halo(p, theta_rad) * (0.478 * hf);
+    return rgb * (p.strength * fade);
+}
+
+// The rays' radiance per unit h * tri (see glare_psf_smooth).
+float glare_ray_peak(GlareParams p, float theta_rad) {
+    if (theta_rad >= p.extent_rad) {
+        return 0.0;
+    }
+    float fade = 1.0 - smoothstep(0.85 * p.extent_rad, p.extent_rad, theta_rad);
+    float hf = clamp(p.halo_fraction, 0.0, 1.0);
+    float c = clamp(p.streak_contrast, 0.0, 1.0);
+    return glare_flare(theta_rad) * (1.0 - hf) * c * 20.0 * p.strength * fade;
+}
+
+// The core's share of the smooth part at theta: 1 inside inner_rad, falling smoothly
+// (smoothstep) to exactly 0 from outer_rad on. The halo (drawn at reduced resolution) takes the
+// rest, so that what is drawn at reduced resolution is zero near the source, where the PSF is
+// steep, and varies slowly where it is not.
+float glare_core_share(float theta_rad, float inner_rad, float outer_rad) {
+    return 1.0 - smoothstep(inner_rad, outer_rad, theta_rad);
 }
