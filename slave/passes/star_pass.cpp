@@ -21,10 +21,19 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     vertices_.upload(data);
 }
 
+double StarPass::visible_magnitude(double exposure) const {
+    if (!(exposure > 0.0) || !(config_.zero_mag_flux > 0.0)) return -1e9;
+    const double sigma = config_.psf_sigma_arcmin / 60.0 * std::numbers::pi / 180.0;
+    const double min_flux = kMinDisplay * 2.0 * std::numbers::pi * sigma * sigma / exposure;
+    return -2.5 * std::log10(min_flux / config_.zero_mag_flux);
+}
+
 int StarPass::prepare(const FrameContext& frame) {
     view_ = &frame.view;
-    magnitude_limit_ = std::min<double>(config_.magnitude_limit, frame.snap->settings.star_magnitude_limit);
-    return 1;
+    magnitude_limit_ = std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
+                                 visible_magnitude(frame.snap->settings.exposure)});
+    const bool any = !magnitudes_.empty() && magnitudes_.front() <= magnitude_limit_;
+    return any ? 1 : 0;
 }
 
 void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_); }

@@ -21,11 +21,18 @@ public:
     void draw(const ChannelView& view, double magnitude_limit);
 
     // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
-    // brighter than both the scene's and the snapshot's magnitude limits.
+    // brighter than the scene's and the snapshot's magnitude limits and than visible_magnitude()
+    // at the snapshot's exposure (cluster-wide, so every channel draws the same stars). Skipped
+    // (0 draws) when no star is left: by day.
     std::string name() const override { return "stars"; }
     PassIo io() const override { return {.writes_color = true}; }
     int prepare(const FrameContext& frame) override;
     void draw(const PassInputs& in, int step) override;
+
+    // The faintest magnitude whose PSF peak (flux / (2 pi sigma^2), the Gaussian's centre) reaches
+    // kMinDisplay on the display at this exposure; fainter stars cannot change an 8-bit pixel.
+    double visible_magnitude(double exposure) const;
+    static constexpr double kMinDisplay = 1.0 / 8192.0;  // under half of the first sRGB code value
 
 private:
     StarFieldConfig config_;
