@@ -8,6 +8,7 @@
 #include <iostream>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "atmosphere/atmosphere_geometry.hpp"
@@ -436,6 +437,106 @@ TEST(AtmosphereMonteCarlo, FirstOrderEstimateMatchesQuadrature) {
         EXPECT_LT(sky.multiple_luminance_stderr, 0.02 * det);
         EXPECT_EQ(sky.spectrum, sky.multiple_spectrum);
     }
+}
+
+namespace {
+void expect_agree(const at::SkyRadiance& a, const at::SkyRadiance& b, double sigmas, const std::string& what) {
+    const double combined = std::hypot(a.multiple_luminance_stderr, b.multiple_luminance_stderr);
+    EXPECT_GT(combined, 0.0) << what;
+    EXPECT_NEAR(a.multiple_luminance, b.multiple_luminance, sigmas * combined) << what << " luminance";
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(a.multiple_rgb[k], b.multiple_rgb[k],
+                    sigmas * std::hypot(a.multiple_rgb_stderr[k], b.multiple_rgb_stderr[k]))
+            << what << " rgb " << k;
+}
+
+std::string describe(const at::SkyQuery& q) {
+    return "alt " + std::to_string(q.altitude_m) + " vz " + std::to_string(q.view_zenith_deg) + " sz " +
+           std::to_string(q.sun_zenith_deg) + " az " + std::to_string(q.relative_azimuth_deg);
+}
+}  // namespace
+
+TEST(AtmosphereMonteCarlo, LineSampleAgreesWithTheCollisionEstimator) {
+    // Unbiasedness of MsEstimator::kLitSegment (the line sample toward the sunlit air and the
+    // twilight direction lobe): where the plain estimator (NEE at the collisions) is precise --
+    // daylight, sunset, a camera in space -- both agree within their combined standard errors,
+    // in luminance and in each colour channel, with different seeds.
+    at::ReferenceSettings lit, plain;
+    lit.ms_paths = 1024;
+    plain.ms_paths = 2048;
+    plain.ms_estimator = at::MsEstimator::kCollision;
+    plain.seed = 2;
+    const at::ReferenceIntegrator a(at::AtmosphereParameters::earth(), lit),
+        b(at::AtmosphereParameters::earth(), plain);
+    for (const at::SkyQuery& q : {at::SkyQuery{0.0, 0.0, 30.0, 0.0}, at::SkyQuery{0.0, 85.0, 65.0, 180.0},
+                                  at::SkyQuery{0.0, 120.0, 40.0, 0.0}, at::SkyQuery{1.0e4, 60.0, 88.0, 0.0},
+                                  at::SkyQuery{1.0e6, 140.0, 65.0, 30.0}, at::SkyQuery{4.0e5, 110.0, 30.0, 90.0}}) {
+        const auto ra = a.sky(q), rb = b.sky(q);
+        std::cout << "[ estimators ] " << describe(q) << ": line sample " << ra.multiple_luminance << " +- "
+                  << ra.multiple_luminance_stderr << ", collisions " << rb.multiple_luminance << " +- "
+                  << rb.multiple_luminance_stderr << "\n";
+        expect_agree(ra, rb, 4.0, describe(q));
+    }
+}
+
+TEST(AtmosphereMonteCarlo, LineSampleIsFarLessNoisyInTwilight) {
+    // The reason for the line sample: with the Sun 5 degrees below the horizon the collisions fall
+    // in the dense shadowed air, and few paths of the plain estimator collect any sunlight. With
+    // the same paths, the line sample's standard error must be well below half the plain one,
+    // and the two must still agree (the plain estimate given many more paths).
+    at::ReferenceSettings lit, plain;
+    lit.ms_paths = 512;
+    plain.ms_paths = 512;
+    plain.ms_estimator = at::MsEstimator::kCollision;
+    const at::ReferenceIntegrator a(at::AtmosphereParameters::earth(), lit),
+        b(at::AtmosphereParameters::earth(), plain);
+    plain.ms_paths = 8192;
+    const at::ReferenceIntegrator c(at::AtmosphereParameters::earth(), plain);
+    for (const at::SkyQuery& q : {at::SkyQuery{0.0, 3.6, 95.0, 0.0}, at::SkyQuery{1.0e4, 60.0, 95.0, 180.0}}) {
+        const auto ra = a.sky(q), rb = b.sky(q), rc = c.sky(q);
+        std::cout << "[ twilight ] " << describe(q) << ": line sample " << ra.multiple_luminance << " +- "
+                  << ra.multiple_luminance_stderr << ", collisions " << rb.multiple_luminance << " +- "
+                  << rb.multiple_luminance_stderr << " (" << rc.multiple_luminance << " +- "
+                  << rc.multiple_luminance_stderr << " with 8192 paths)\n";
+        EXPECT_LT(ra.multiple_luminance_stderr, 0.5 * rb.multiple_luminance_stderr) << describe(q);
+        expect_agree(ra, rc, 4.0, describe(q));
+    }
+}
+
+TEST(AtmosphereMonteCarlo, AdaptiveCountStopsAtTheTargetOrTheCap) {
+    at::ReferenceSettings s;
+    s.ms_paths = 128;
+    s.ms_max_paths = 2048;
+    s.ms_target_noise = 0.01;
+    const at::ReferenceIntegrator ri(at::AtmosphereParameters::earth(), s);
+    for (const at::SkyQuery& q : {at::SkyQuery{0.0, 30.0, 30.0, 0.0}, at::SkyQuery{0.0, 30.0, 95.0, 0.0}}) {
+        const auto sky = ri.sky(q);
+        std::cout << "[ adaptive ] " << describe(q) << ": " << sky.ms_paths << " paths, noise "
+                  << sky.multiple_luminance_stderr / sky.luminance << "\n";
+        // Doubling from the first batch, up to the cap.
+        EXPECT_TRUE(sky.ms_paths == 128 || sky.ms_paths == 256 || sky.ms_paths == 512 || sky.ms_paths == 1024 ||
+                    sky.ms_paths == 2048)
+            << sky.ms_paths;
+        if (sky.ms_paths < 2048) EXPECT_LE(sky.multiple_luminance_stderr, 0.01 * sky.luminance) << describe(q);
+        if (sky.ms_paths > 128) {  // the previous batch was not precise enough: it was not a free stop
+            at::ReferenceSettings fixed = s;
+            fixed.ms_max_paths = 0;
+            fixed.ms_paths = sky.ms_paths / 2;
+            const auto half = at::ReferenceIntegrator(at::AtmosphereParameters::earth(), fixed).sky(q);
+            EXPECT_GT(half.multiple_luminance_stderr, 0.01 * half.luminance) << describe(q);
+        }
+        // The same as a fixed count of that many paths, bit for bit (path i uses stream i).
+        at::ReferenceSettings fixed = s;
+        fixed.ms_max_paths = 0;
+        fixed.ms_paths = sky.ms_paths;
+        const auto same = at::ReferenceIntegrator(at::AtmosphereParameters::earth(), fixed).sky(q);
+        EXPECT_EQ(same.spectrum, sky.spectrum) << describe(q);
+    }
+    // The target floor: a sky far darker than it stops after the first batch.
+    s.ms_target_floor = 1.0;
+    const auto night = at::ReferenceIntegrator(at::AtmosphereParameters::earth(), s).sky({0.0, 30.0, 110.0, 0.0});
+    EXPECT_LT(night.luminance, 1e-2);
+    EXPECT_EQ(night.ms_paths, 128);
 }
 
 TEST(AtmosphereSanity, MarsPresetRuns) {

@@ -13,6 +13,10 @@ glm::dvec2 chromaticity_uv(const glm::dvec3& c) {
     return glm::dvec2(4.0 * c.x / den, 9.0 * c.y / den);
 }
 
+bool reference_is_limited(const ReferenceRow& row) {
+    return !(row.luminance > 0.0) || row.luminance_stderr > kMaxReferenceNoise * row.luminance;
+}
+
 namespace {
 struct Samples {
     std::vector<double> rel, signed_rel, chroma, noise;
@@ -76,7 +80,7 @@ AccuracyReport measure_accuracy(const ProductionAtmosphere& model, const Referen
             continue;
         }
         // No Monte Carlo path reached sunlight (night side): the reference is 0 +- unknown.
-        if (!(row.luminance > 0.0) || row.luminance_stderr > kMaxReferenceNoise * row.luminance) {
+        if (reference_is_limited(row)) {
             ++s.limited;
             continue;
         }

@@ -18,10 +18,16 @@ namespace cupola::atmosphere {
 // 1e-4 cd m^-2: below the natural night sky (airglow and starlight, ~2e-4 cd m^-2).
 inline constexpr double kLuminanceFloor = 1e-4;
 // Rows whose reference is itself uncertain by more than this (Monte Carlo standard error over
-// luminance: deep twilight and the night side seen from space, where few paths reach sunlight)
-// cannot measure a model to the 2 % target; they are left out of the statistics and counted in
-// `reference_limited` (docs/atmosphere-speed-vs-error.md reports them).
+// luminance) cannot measure a model to the 2 % target; they are left out of the statistics and
+// counted in `reference_limited` (docs/atmosphere-speed-vs-error.md reports them). Since the
+// reference's line-sampled, adaptive estimator (common/atmosphere/reference_integrator.hpp) such
+// rows are few: the night side seen from space, lit only by light scattered more than once from
+// the distant twilight ring (data/atmosphere/PROVENANCE.md gives the counts per group).
 inline constexpr double kMaxReferenceNoise = 0.05;
+
+// True when the stored reference row cannot judge a model: exactly 0 (no Monte Carlo path reached
+// sunlight, 0 +- unknown) or noisier than kMaxReferenceNoise.
+bool reference_is_limited(const ReferenceRow& row);
 
 struct ErrorStats {
     std::string camera;          // "all" for the overall entry

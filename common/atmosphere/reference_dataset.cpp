@@ -82,7 +82,58 @@ bool metadata_line(const std::string& line, std::string& key, std::string& value
     return true;
 }
 
+// A metadata value as a number (absent: fallback).
+double metadata_number(const ReferenceDataset& d, const std::string& key, double fallback) {
+    const auto it = d.metadata.find(key);
+    if (it == d.metadata.end()) return fallback;
+    double v = 0.0;
+    const std::string& f = it->second;
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v))
+        throw std::runtime_error("reference dataset metadata " + key + ": '" + f + "' is not a finite number");
+    return v;
+}
+
+int metadata_count(const ReferenceDataset& d, const std::string& key, int fallback) {
+    const double v = metadata_number(d, key, fallback);
+    if (v != std::floor(v) || v < 0.0 || v > 1e9)
+        throw std::runtime_error("reference dataset metadata " + key + ": not a count");
+    return static_cast<int>(v);
+}
+
+bool recomputed_here(const ReferenceDataset& d, double sun_zenith_deg) {
+    const auto it = d.metadata.find("recomputed_sun_zenith_deg");
+    if (it == d.metadata.end()) return true;
+    for (const std::string& f : split(it->second, ',')) {
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+        if (f.empty() || ec != std::errc() || end != f.data() + f.size())
+            throw std::runtime_error("reference dataset metadata recomputed_sun_zenith_deg: '" + f +
+                                     "' is not a number");
+        if (v == sun_zenith_deg) return true;
+    }
+    return false;
+}
+
 }  // namespace
+
+ReferenceSettings row_settings(const ReferenceDataset& d, double sun_zenith_deg) {
+    const std::string prefix = recomputed_here(d, sun_zenith_deg) ? "" : "kept_";
+    ReferenceSettings s;
+    s.scattering_orders = prefix.empty() ? d.orders : metadata_count(d, "kept_orders", d.orders);
+    s.ms_paths = prefix.empty() ? d.paths : metadata_count(d, "kept_paths", d.paths);
+    s.seed = prefix.empty() ? d.seed : static_cast<std::uint64_t>(metadata_count(d, "kept_seed", 1));
+    const auto est = d.metadata.find(prefix + "ms_estimator");
+    const std::string estimator = est == d.metadata.end() ? "collision" : est->second;
+    if (estimator != "collision" && estimator != "lit_segment")
+        throw std::runtime_error("reference dataset metadata " + prefix + "ms_estimator: '" + estimator +
+                                 "' is neither collision nor lit_segment");
+    s.ms_estimator = estimator == "collision" ? MsEstimator::kCollision : MsEstimator::kLitSegment;
+    s.ms_max_paths = metadata_count(d, prefix + "ms_max_paths", 0);
+    s.ms_target_noise = metadata_number(d, prefix + "ms_target_noise", 0.0);
+    s.ms_target_floor = metadata_number(d, prefix + "ms_target_floor", 0.0);
+    return s;
+}
 
 ReferenceRow make_reference_row(const ValidationCase& c, const SkyRadiance& s) {
     ReferenceRow row;

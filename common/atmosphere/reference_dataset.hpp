@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "atmosphere/reference_integrator.hpp"
 #include "atmosphere/validation_set.hpp"
 
 namespace cupola::atmosphere {
@@ -48,6 +49,15 @@ struct ReferenceDataset {
     std::map<std::string, std::string> metadata;  // every "# key=value" line, the required ones included
     std::vector<ReferenceRow> rows;
 };
+
+// The ReferenceSettings the rows at this sun zenith were computed with, from the metadata: orders,
+// paths and seed, and the optional ms_estimator (lit_segment or collision; absent: collision, the
+// only estimator before the line sample), ms_max_paths, ms_target_noise and ms_target_floor
+// (absent: a fixed path count). A file whose rows were recomputed only for some sun zenith angles
+// lists them in recomputed_sun_zenith_deg (comma-separated); its other rows were kept from an
+// earlier file, whose settings are the same keys prefixed "kept_". Everything else is at its
+// default. Throws std::runtime_error naming the key whose value is malformed.
+ReferenceSettings row_settings(const ReferenceDataset& d, double sun_zenith_deg);
 
 // A row as the tool stores it: the query and what ReferenceIntegrator::sky() returned for it.
 ReferenceRow make_reference_row(const ValidationCase& c, const SkyRadiance& s);

@@ -117,6 +117,75 @@ ReferenceIntegrator::ReferenceIntegrator(AtmosphereParameters params, ReferenceS
         sun_.push_back(params_.solar_irradiance(l));
         albedo_.push_back(params_.ground_albedo(l));
     }
+    if (!(settings_.ms_target_noise >= 0.0))
+        throw std::invalid_argument("ReferenceSettings: ms_target_noise must be >= 0");
+    for (std::size_t k = 0; k < settings_.wavelengths_nm.size(); ++k)
+        if (std::abs(settings_.wavelengths_nm[k] - 550.0) < std::abs(settings_.wavelengths_nm[proxy_k_] - 550.0))
+            proxy_k_ = k;
+    if (settings_.ms_estimator == MsEstimator::kLitSegment && settings_.ms_paths > 0 &&
+        settings_.scattering_orders >= settings_.ms_first_order)
+        build_sun_proxy();
+}
+
+namespace {
+// The proxy table's size and its parameterisation of (r, mu_s) for rays that miss the ground:
+// x_r = rho / H and x_mu = (d - d_min) / (d_max - d_min), with rho the distance to the horizon,
+// H its value at the top, d the distance to the top boundary along the ray (Bruneton 2017,
+// the transmittance table's mapping in its "Precomputations" part): the grazing rays, where the
+// transmittance changes fastest, get the most entries.
+constexpr int kProxyR = 32, kProxyMu = 128;
+// The twilight lobe: at a vertex in the planet's shadow, this share of the new directions is drawn
+// from a Henyey-Greenstein lobe (this g) around the direction toward the nearest point of the
+// terminator circle (the sunlit side of the shadow's edge, at this altitude), where the bright
+// twilight air is; the rest from the phase function (or cosine). Both are in the density, so the
+// weights stay bounded by 1 / (1 - share) times the unmixed ones (Veach 1997, section 9.2).
+constexpr double kTwilightLobeShare = 0.5, kTwilightLobeG = 0.75, kTwilightAltitude_m = 30000.0;
+struct ProxyCoord {
+    double r, mu;
+};
+ProxyCoord proxy_coord_inverse(double x_r, double x_mu, double R, double top) {
+    const double H = std::sqrt(top * top - R * R), rho = H * x_r;
+    const double r = std::sqrt(rho * rho + R * R);
+    const double d_min = top - r, d_max = rho + H, d = d_min + x_mu * (d_max - d_min);
+    const double mu = d <= 0.0 ? 1.0 : std::clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+    return {r, mu};
+}
+}  // namespace
+
+void ReferenceIntegrator::build_sun_proxy() {
+    const double R = params_.bottom_radius, top = params_.top_radius;
+    const double e_lum = color_.luminance(sun_);
+    std::vector<double> ts, lit(sun_.size());
+    sun_proxy_log_.assign(static_cast<std::size_t>(kProxyR) * kProxyMu, 0.0);
+    for (int i = 0; i < kProxyR; ++i)
+        for (int j = 0; j < kProxyMu; ++j) {
+            // Just inside the last column, whose ray is exactly tangent to the ground.
+            const double x_mu = std::min(j / (kProxyMu - 1.0), 1.0 - 1e-9);
+            const ProxyCoord c = proxy_coord_inverse(i / (kProxyR - 1.0), x_mu, R, top);
+            const glm::dvec3 sun(std::sqrt(std::max(0.0, 1.0 - c.mu * c.mu)), 0.0, c.mu);
+            sun_transmittance(glm::dvec3(0.0, 0.0, c.r), sun, settings_.ms_panel_height_m, ts);
+            for (std::size_t k = 0; k < ts.size(); ++k) lit[k] = ts[k] * sun_[k];
+            const double t = e_lum > 0.0 ? color_.luminance(lit) / e_lum : 0.0;
+            sun_proxy_log_[static_cast<std::size_t>(i) * kProxyMu + j] = std::log(std::max(t, 1e-200));
+        }
+}
+
+double ReferenceIntegrator::sun_proxy(const glm::dvec3& p, const glm::dvec3& sun) const {
+    const double R = params_.bottom_radius, top = params_.top_radius;
+    const double len = glm::length(p);
+    const double r = std::clamp(len, R, top);
+    const double mu = std::clamp(glm::dot(p, sun) / std::max(len, 1e-300), -1.0, 1.0);
+    if (f64::ray_hits_sphere(r, mu, R)) return 0.0;
+    const double H = std::sqrt(top * top - R * R), rho = std::sqrt(std::max(r * r - R * R, 0.0));
+    const double d = f64::ray_sphere_far_m(r, mu, top), d_min = top - r, d_max = rho + H;
+    const double x_mu = d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
+    const double fr = std::clamp(rho / H, 0.0, 1.0) * (kProxyR - 1), fm = x_mu * (kProxyMu - 1);
+    const int i = std::min(static_cast<int>(fr), kProxyR - 2), j = std::min(static_cast<int>(fm), kProxyMu - 2);
+    const double a = fr - i, b = fm - j;
+    auto at = [&](int ii, int jj) { return sun_proxy_log_[static_cast<std::size_t>(ii) * kProxyMu + jj]; };
+    const double v =
+        (1 - a) * ((1 - b) * at(i, j) + b * at(i, j + 1)) + a * ((1 - b) * at(i + 1, j) + b * at(i + 1, j + 1));
+    return std::max(std::exp(v), 1e-200);
 }
 
 glm::dvec3 ReferenceIntegrator::densities(const glm::dvec3& p) const {
@@ -312,6 +381,7 @@ struct ReferenceIntegrator::MsPath {
     Rng rng{0, 0};
     glm::dvec3 p{0.0}, w{0.0};
     std::vector<double> contrib, thr, tau, ts;
+    std::vector<double> node, cdf;  // the line sample's density over the segment's panels
 };
 
 namespace {
@@ -331,6 +401,13 @@ struct MsTally {
         rgb_sumsq += c * c;
         lum_sum += l;
         lum_sumsq += l * l;
+    }
+
+    // Mean and standard error of the luminance after m paths.
+    std::pair<double, double> luminance(double m) const {
+        const double mean = lum_sum / m;
+        const double var = m < 2.0 ? 0.0 : std::max(0.0, (lum_sumsq - m * mean * mean) / (m - 1.0));
+        return {mean, std::sqrt(var / m)};
     }
 
     void finish(double m, SkyRadiance& out) const {
@@ -365,7 +442,7 @@ void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const gl
     const int paths = std::max(settings_.ms_paths, 0);
     out.multiple_spectrum.assign(n, 0.0);
     out.multiple_stderr.assign(n, 0.0);
-    out.ms_paths = paths;
+    out.ms_paths = 0;
     if (max_order < first || paths == 0) return;
 
     MsTally tally(n);
@@ -374,16 +451,27 @@ void ReferenceIntegrator::multiple_scattering(const glm::dvec3& camera, const gl
     path.thr.resize(n);
     path.tau.resize(n);
     path.ts.resize(n);
-    for (int i = 0; i < paths; ++i) {
-        path.rng = Rng(settings_.seed, static_cast<std::uint64_t>(i));
-        std::fill(path.contrib.begin(), path.contrib.end(), 0.0);
-        std::fill(path.thr.begin(), path.thr.end(), 1.0);
-        path.p = camera;
-        path.w = view;
-        trace_ms_path(path, length, hits_ground, sun);
-        tally.add(path.contrib, color_);
+    // Adaptive count: the part computed by quadrature counts in the luminance the target refers to.
+    const double fixed_lum = first == 1 ? 0.0 : out.single_luminance + out.ground_luminance;
+    const int cap = std::max(paths, settings_.ms_max_paths);
+    int done = 0;
+    for (int batch = paths;; batch = std::min(cap, 2 * batch)) {
+        for (int i = done; i < batch; ++i) {
+            path.rng = Rng(settings_.seed, static_cast<std::uint64_t>(i));
+            std::fill(path.contrib.begin(), path.contrib.end(), 0.0);
+            std::fill(path.thr.begin(), path.thr.end(), 1.0);
+            path.p = camera;
+            path.w = view;
+            trace_ms_path(path, length, hits_ground, sun);
+            tally.add(path.contrib, color_);
+        }
+        done = batch;
+        if (done >= cap) break;
+        const auto [mean, err] = tally.luminance(static_cast<double>(done));
+        if (err <= settings_.ms_target_noise * std::max(fixed_lum + mean, settings_.ms_target_floor)) break;
     }
-    tally.finish(static_cast<double>(paths), out);
+    out.ms_paths = done;
+    tally.finish(static_cast<double>(done), out);
 }
 
 void ReferenceIntegrator::trace_ms_path(MsPath& path, double length, bool hits_ground, const glm::dvec3& sun) const {
@@ -415,8 +503,11 @@ void ReferenceIntegrator::trace_ms_path(MsPath& path, double length, bool hits_g
             for (std::size_t k = 0; k < n; ++k) alpha += std::exp(-tau[k]);
             alpha = std::clamp(alpha * inv_n, 0.05, 0.95);
         }
+        const bool lit_segment = settings_.ms_estimator == MsEstimator::kLitSegment;
+        if (lit_segment && order >= settings_.ms_first_order) ms_lit_segment_nee(path, s, sun);
         const bool surface = ground && path.rng.uniform() < alpha;
         const double u = path.rng.uniform();
+        if (lit_segment && !surface && order == settings_.scattering_orders) break;  // nothing left to collect
         if (surface) {
             if (!ms_surface_bounce(path, order, len, alpha, sun)) break;
             continue;
@@ -441,10 +532,35 @@ bool ReferenceIntegrator::ms_surface_bounce(MsPath& path, int order, double len,
             path.contrib[k] += path.thr[k] * albedo_[k] / kPi * mu_s * path.ts[k] * sun_[k];
     }
     if (order == settings_.scattering_orders) return false;
-    // Cosine-weighted hemisphere: f cos / pdf = albedo.
-    const double u1 = path.rng.uniform(), u2 = path.rng.uniform();
-    path.w = direction_around(normal, std::sqrt(1.0 - u1), 2.0 * kPi * u2);
-    for (std::size_t k = 0; k < n; ++k) path.thr[k] *= albedo_[k];
+    // Cosine-weighted hemisphere (f cos / pdf = albedo), mixed with the twilight lobe in shadow.
+    glm::dvec3 axis(0.0);
+    const bool lobe = ms_twilight_axis(path.p, sun, axis);
+    const double share = lobe ? kTwilightLobeShare : 0.0;
+    const double u0 = lobe ? path.rng.uniform() : 1.0, u1 = path.rng.uniform(), u2 = path.rng.uniform();
+    const glm::dvec3 w_new = u0 < share ? direction_around(axis, sample_hg_nu(kTwilightLobeG, u1), 2.0 * kPi * u2)
+                                        : direction_around(normal, std::sqrt(1.0 - u1), 2.0 * kPi * u2);
+    const double cos_n = glm::dot(normal, w_new);
+    if (!(cos_n > 0.0)) return false;  // a lobe direction into the ground: f = 0
+    const double pdf = (1.0 - share) * cos_n / kPi +
+                       (lobe ? share * henyey_greenstein_phase(kTwilightLobeG, glm::dot(axis, w_new)) : 0.0);
+    for (std::size_t k = 0; k < n; ++k) path.thr[k] *= albedo_[k] * (cos_n / kPi) / pdf;
+    path.w = w_new;
+    return true;
+}
+
+bool ReferenceIntegrator::ms_twilight_axis(const glm::dvec3& x, const glm::dvec3& sun, glm::dvec3& axis) const {
+    if (settings_.ms_estimator != MsEstimator::kLitSegment) return false;
+    const double len = glm::length(x);
+    const double mu_s = glm::dot(x, sun) / std::max(len, 1e-300);
+    if (!f64::ray_hits_sphere(std::clamp(len, params_.bottom_radius, params_.top_radius), mu_s, params_.bottom_radius))
+        return false;  // sunlit: the phase function (or cosine) alone
+    const glm::dvec3 off_axis = x - glm::dot(x, sun) * sun;
+    const double d = glm::length(off_axis);
+    if (!(d > 0.0)) return false;
+    const glm::dvec3 target = (params_.bottom_radius + kTwilightAltitude_m) / d * off_axis;
+    const glm::dvec3 to = target - x;
+    if (!(glm::length(to) > 0.0)) return false;
+    axis = glm::normalize(to);
     return true;
 }
 
@@ -472,7 +588,7 @@ bool ReferenceIntegrator::ms_volume_scatter(MsPath& path, int order, const Segme
         thr[k] *= std::exp(-tk) / pdf;
     }
     path.p = x;
-    if (order >= settings_.ms_first_order) {
+    if (settings_.ms_estimator == MsEstimator::kCollision && order >= settings_.ms_first_order) {
         sun_transmittance(path.p, sun, settings_.ms_panel_height_m, path.ts);
         const double nu = glm::dot(path.w, sun);
         const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(g, nu);
@@ -488,16 +604,78 @@ bool ReferenceIntegrator::ms_volume_scatter(MsPath& path, int order, const Segme
     }
     if (!(sr + sm > 0.0)) return false;
     const double q = sr / (sr + sm);
+    glm::dvec3 axis(0.0);
+    const bool lobe = ms_twilight_axis(path.p, sun, axis);
+    const double share = lobe ? kTwilightLobeShare : 0.0;
+    const double u0 = lobe ? path.rng.uniform() : 1.0;
     const double u1 = path.rng.uniform(), u2 = path.rng.uniform(), u3 = path.rng.uniform();
-    const double nu = u1 < q ? sample_rayleigh_nu(u2) : sample_hg_nu(g, u2);
-    const glm::dvec3 w_new = direction_around(path.w, nu, 2.0 * kPi * u3);
+    glm::dvec3 w_new;
+    if (u0 < share) {
+        w_new = direction_around(axis, sample_hg_nu(kTwilightLobeG, u2), 2.0 * kPi * u3);
+    } else {
+        const double nu = u1 < q ? sample_rayleigh_nu(u2) : sample_hg_nu(g, u2);
+        w_new = direction_around(path.w, nu, 2.0 * kPi * u3);
+    }
     const double c = glm::dot(path.w, w_new);
-    const double dir_pdf = q * rayleigh_phase(c) + (1.0 - q) * henyey_greenstein_phase(g, c);
+    const double dir_pdf = (1.0 - share) * (q * rayleigh_phase(c) + (1.0 - q) * henyey_greenstein_phase(g, c)) +
+                           (lobe ? share * henyey_greenstein_phase(kTwilightLobeG, glm::dot(axis, w_new)) : 0.0);
     if (!(dir_pdf > 0.0)) return false;
     const double pr = rayleigh_phase(c), pm = cornette_shanks_phase(g, c);
     for (std::size_t k = 0; k < n; ++k) thr[k] *= (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) / dir_pdf;
     path.w = w_new;
     return true;
+}
+
+void ReferenceIntegrator::ms_lit_segment_nee(MsPath& path, const Segment& s, const glm::dvec3& sun) const {
+    // Bound of the in-scattered sunlight at the panel boundaries, at one wavelength.
+    const std::size_t m = s.t.size(), k = proxy_k_;
+    const glm::dvec3 sigma(beta_r_[k], beta_me_[k], beta_o_[k]);
+    path.node.resize(m);
+    double peak = 0.0;
+    for (std::size_t i = 0; i < m; ++i) {
+        const glm::dvec3 x = s.o + s.t[i] * s.v;
+        const glm::dvec3 rho = densities(x);
+        const double scatter = beta_r_[k] * rho.x + beta_ms_[k] * rho.y;
+        path.node[i] = scatter > 0.0 ? scatter * std::exp(-glm::dot(sigma, s.cum[i])) * sun_proxy(x, sun) : 0.0;
+        peak = std::max(peak, path.node[i]);
+    }
+    // Piecewise-constant density over the panels: the larger end of each (the shadow is convex, so
+    // a panel with a sunlit point has a sunlit end), plus 1e-3 of the peak everywhere.
+    path.cdf.assign(m, 0.0);
+    for (std::size_t i = 1; i < m; ++i)
+        path.cdf[i] =
+            path.cdf[i - 1] + (s.t[i] - s.t[i - 1]) * (std::max(path.node[i - 1], path.node[i]) + 1e-3 * peak);
+    const double total = path.cdf.back(), u = path.rng.uniform();
+    if (!(s.length > 0.0)) return;
+    if (!(total > 0.0)) {  // no sunlit air, or none the proxy sees: uniform in distance
+        ms_add_sunlight(path, s, u * s.length, s.length, sun);
+        return;
+    }
+    const double target = u * total;
+    std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(path.cdf.begin() + 1, path.cdf.end(), target) - path.cdf.begin());
+    i = std::clamp<std::size_t>(i, 1, m - 1);
+    const double w = path.cdf[i] - path.cdf[i - 1], width = s.t[i] - s.t[i - 1];
+    if (!(w > 0.0) || !(width > 0.0)) return;
+    const double t = s.t[i - 1] + std::clamp((target - path.cdf[i - 1]) / w, 0.0, 1.0) * width;
+    ms_add_sunlight(path, s, t, total * width / w, sun);  // 1 / pdf(t)
+}
+
+void ReferenceIntegrator::ms_add_sunlight(MsPath& path, const Segment& s, double t, double weight,
+                                          const glm::dvec3& sun) const {
+    const glm::dvec3 x = s.o + t * s.v;
+    const glm::dvec3 rho = densities(x);
+    if (rho.x <= 0.0 && rho.y <= 0.0) return;
+    sun_transmittance(x, sun, settings_.ms_panel_height_m, path.ts);
+    const glm::dvec3 col = segment_column(s, t);
+    const double nu = glm::dot(s.v, sun);
+    const double pr = rayleigh_phase(nu), pm = cornette_shanks_phase(params_.mie_g, nu);
+    for (std::size_t k = 0; k < path.contrib.size(); ++k) {
+        if (path.ts[k] <= 0.0) continue;
+        const double tv = std::exp(-(beta_r_[k] * col.x + beta_me_[k] * col.y + beta_o_[k] * col.z));
+        path.contrib[k] +=
+            weight * path.thr[k] * tv * (beta_r_[k] * rho.x * pr + beta_ms_[k] * rho.y * pm) * path.ts[k] * sun_[k];
+    }
 }
 
 SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {
@@ -524,6 +702,8 @@ SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {
     const double length =
         out.hits_ground ? f64::ray_sphere_near_m(e.r_m, e.mu, R) : f64::ray_sphere_far_m(e.r_m, e.mu, top);
     single_scattering(o, view, length, out.hits_ground, sun, out);
+    out.single_luminance = color_.luminance(out.single_spectrum);
+    out.ground_luminance = color_.luminance(out.ground_spectrum);
     multiple_scattering(o, view, length, out.hits_ground, sun, out);
     for (std::size_t k = 0; k < n; ++k)
         out.spectrum[k] = settings_.ms_first_order == 1
@@ -532,8 +712,6 @@ SkyRadiance ReferenceIntegrator::sky(const SkyQuery& q) const {
     out.xyz = color_.xyz(out.spectrum);
     out.rgb = xyz_to_linear_srgb(out.xyz);
     out.luminance = out.xyz.y;
-    out.single_luminance = color_.luminance(out.single_spectrum);
-    out.ground_luminance = color_.luminance(out.ground_spectrum);
     return out;
 }
 

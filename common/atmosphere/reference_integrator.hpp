@@ -40,15 +40,38 @@
 //        (exact inversion) and a Henyey-Greenstein lobe with the Mie g; Cornette-Shanks is
 //        evaluated exactly in the weight (CS/HG <= 1.5, so weights stay bounded); ground vertices
 //        sample the cosine lobe;
-//      - NEE to the Sun at vertices 2..N contributes order 2..N; the order-1 NEE is skipped
-//        (computed deterministically above), unless ms_first_order = 1 (validation mode);
+//      - sunlight is collected by next-event estimation (NEE) toward the Sun. With the default
+//        MsEstimator::kLitSegment it is a line sample: on every segment of the path (the view ray
+//        first), one extra distance is drawn for the NEE alone, independent of the collision that
+//        continues the path, from a piecewise-constant density over the segment's quadrature
+//        panels proportional to a cheap bound of the in-scattered sunlight (density x
+//        transmittance along the segment at one wavelength x a tabulated luminance-weighted
+//        transmittance toward the Sun, 0 in the planet's shadow, the larger of each panel's two
+//        ends, plus a small floor so that every panel can be drawn). The estimate stays unbiased
+//        (the density is positive wherever sunlight can be scattered, and the integrand is
+//        evaluated exactly) and in twilight puts its samples in the high sunlit air instead of
+//        the dense shadowed air where the collisions fall (Kulla & Fajardo 2012, sections 3-4:
+//        sampling the distance for direct lighting separately from the path continuation).
+//        At vertices in the planet's shadow, new directions are drawn from a mixture of the
+//        phase function (or cosine lobe) and a lobe toward the nearest sunlit air (the twilight
+//        arch), with the mixture's density in the weight (Veach 1997, section 9.2).
+//        MsEstimator::kCollision is the plain estimator (NEE at the collision vertices), kept to
+//        check the line sample against it;
+//      - NEE of order 1 is skipped (computed deterministically above), unless ms_first_order = 1
+//        (validation mode); segment k carries order k;
+//      - adaptive path count (ms_max_paths > ms_paths): after ms_paths paths the count doubles
+//        until the standard error of the luminance is at most ms_target_noise of the whole
+//        luminance (order 1 included; of ms_target_floor where that is larger, so that skies too
+//        dark to matter do not run to the cap) or ms_max_paths is reached; path i always uses stream i, so
+//        the result is still a deterministic function of the query and the settings;
 //      - each path has its own xoshiro256** stream seeded from (seed, path index): results are
 //        deterministic for a fixed seed and independent of any future parallel split.
 //  "Order" counts interactions: volume scattering events and ground reflections alike.
 //
-// COST (one core, -O2, 48 wavelengths): order 1 alone ~2 ms per sky(); with the defaults (4 orders,
-// 4096 paths) ~100 ms, the multiple-scattering standard error then ~1.5-3 % of the order >= 2 part
-// (~0.3-0.5 % of the total luminance) for daylight views; twilight views are much noisier.
+// COST (one core, -O2, 48 wavelengths): order 1 alone ~2 ms per sky(); with 4 orders and 4096
+// paths ~100 ms, the multiple-scattering standard error then ~1.5-3 % of the order >= 2 part
+// (~0.3-0.5 % of the total luminance) for daylight views; twilight views are noisier (figures for
+// both estimators in data/atmosphere/PROVENANCE.md).
 //
 // LIMITS. A view ray exactly tangent to the top sphere from a camera exactly on it has a length set
 // by rounding (~0.1 m); its (~1e-6 cd m^-2) value is finite but not meaningful. The Sun's disc is not
@@ -74,11 +97,18 @@ double henyey_greenstein_phase(double g, double nu);
 // 360..830 nm in 10 nm steps (48 wavelengths).
 std::vector<double> default_wavelengths();
 
+// How orders >= 2 collect sunlight (see METHOD above).
+enum class MsEstimator { kCollision, kLitSegment };
+
 struct ReferenceSettings {
     int scattering_orders = 4;          // 1 = single scattering + direct ground reflection only
     double panel_height_m = 250.0;      // altitude per quadrature panel for order 1 and transmittance
     double ms_panel_height_m = 1500.0;  // the same for the Monte Carlo paths (cost vs exactness)
-    int ms_paths = 4096;                // Monte Carlo paths per sky() query
+    int ms_paths = 4096;                // Monte Carlo paths per sky() query (the first batch if adaptive)
+    int ms_max_paths = 0;               // adaptive: double up to this many paths (<= ms_paths: fixed count)
+    double ms_target_noise = 0.0;       // adaptive: stop at stderr <= this fraction of the luminance
+    double ms_target_floor = 0.0;       // adaptive: ... or of this luminance (cd m^-2) where it is larger
+    MsEstimator ms_estimator = MsEstimator::kLitSegment;
     std::uint64_t seed = 1;
     int ms_first_order = 2;  // 1: the Monte Carlo also estimates order 1 (validation)
     std::vector<double> wavelengths_nm = default_wavelengths();  // increasing, >= 2
@@ -107,7 +137,7 @@ struct SkyRadiance {
     double single_luminance = 0.0, ground_luminance = 0.0;
     double multiple_luminance = 0.0, multiple_luminance_stderr = 0.0;
     glm::dvec3 multiple_rgb{0.0}, multiple_rgb_stderr{0.0};
-    int ms_paths = 0;
+    int ms_paths = 0;  // paths actually traced (more than ReferenceSettings::ms_paths if adaptive)
 
     bool hits_ground = false;   // the view ray ends on the ground
     bool in_atmosphere = true;  // false: a camera in space whose ray misses the atmosphere
@@ -160,11 +190,22 @@ private:
     bool ms_surface_bounce(MsPath& path, int order, double len, double alpha, const glm::dvec3& sun) const;
     bool ms_volume_scatter(MsPath& path, int order, const Segment& s, double t, double alpha,
                            const glm::dvec3& sun) const;
+    // MsEstimator::kLitSegment: the line sample of the sunlight scattered along segment s.
+    void ms_lit_segment_nee(MsPath& path, const Segment& s, const glm::dvec3& sun) const;
+    void ms_add_sunlight(MsPath& path, const Segment& s, double t, double weight, const glm::dvec3& sun) const;
+    // The sampling density's stand-in for the transmittance toward the Sun: luminance-weighted,
+    // tabulated over (r, mu_s) (0 where the ground blocks the Sun).
+    void build_sun_proxy();
+    // kLitSegment, x in the planet's shadow: the axis of the twilight direction lobe (false: none).
+    bool ms_twilight_axis(const glm::dvec3& x, const glm::dvec3& sun, glm::dvec3& axis) const;
+    double sun_proxy(const glm::dvec3& p, const glm::dvec3& sun) const;
 
     AtmosphereParameters params_;
     ReferenceSettings settings_;
     SpectralToColor color_;
     std::vector<double> beta_r_, beta_ms_, beta_me_, beta_o_, sun_, albedo_;
+    std::vector<double> sun_proxy_log_;  // log of the proxy, kProxyR x kProxyMu
+    std::size_t proxy_k_ = 0;            // wavelength of the proxy's view transmittance (nearest 550 nm)
 };
 
 }  // namespace cupola::atmosphere
