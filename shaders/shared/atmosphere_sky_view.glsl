@@ -12,7 +12,9 @@
 //   camera inside the atmosphere, zenith angle theta, horizon theta_h (> 90 degrees):
 //     sky    theta = theta_h (1 - x^2)           ground theta = theta_h + (pi - theta_h) x^2
 //   camera outside, impact parameter rho (distance of the ray's line from the centre):
-//     sky    rho = R + (top - R) x^2             ground rho = R (1 - x^2)
+//     sky    rho = R + (top - R) x^2 (3 - 2 x)   ground rho = R (1 - x^2)
+// (the sky's rows seen from outside are dense at both ends: at the limb, and where the rays
+// graze the top of the atmosphere and their light falls to 0 over the last few kilometres).
 // Columns: the azimuth phi in [0, pi] between the view and the Sun about the camera's zenith,
 // linear (the atmosphere is symmetric about the plane of the zenith and the Sun). Texel centres
 // sit on the ends of each range (Bruneton 2017), as in atmosphere_lut_mapping.glsl.
@@ -41,7 +43,8 @@ float atm_sky_view_x(AtmosphereParams a, float d_m, bool ground, float q) {
     float R = a.bottom_radius_m;
     if (atm_camera_outside(a, d_m)) {
         if (ground) return sqrt(clamp((R - q) / R, 0.0, 1.0));
-        return sqrt(clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0));
+        float y = clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0);
+        return 0.5 - sin(asin(1.0 - 2.0 * y) / 3.0);  // the inverse of y = x^2 (3 - 2 x)
     }
     float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
     if (ground) return sqrt(clamp((q - th) / (CUPOLA_PI - th), 0.0, 1.0));
@@ -53,7 +56,7 @@ float atm_sky_view_q(AtmosphereParams a, float d_m, bool ground, float x) {
     float R = a.bottom_radius_m;
     if (atm_camera_outside(a, d_m)) {
         if (ground) return R * (1.0 - x * x);
-        return R + (a.top_radius_m - R) * x * x;
+        return R + (a.top_radius_m - R) * x * x * (3.0 - 2.0 * x);
     }
     float th = atm_horizon_zenith_rad(a, max(d_m, R + 1.0));
     if (ground) return th + (CUPOLA_PI - th) * x * x;
@@ -115,8 +118,11 @@ AtmosphereSkyViewSamples atm_sky_view_samples(AtmosphereParams a, sampler2D tran
         if (ground) t.third = vec3(0.0);
         return t;
     }
+    // The half decides whether the ray ends on the ground, not the rounding of its (r, mu): the
+    // horizon row's ray is tangent to the ground in exact arithmetic.
+    float t_end = ground ? atm_distance_to_ground(a, st.r_m, st.mu) : atm_distance_to_top(a, st.r_m, st.mu);
     AtmosphereSplitSegment s = atm_march_split(a, trans, trans_size, ms, ms_size, true, st.r_m, st.mu, st.mu_s, st.nu,
-                                               atm_view_ray_length(a, st, -1.0), samples,
+                                               t_end, samples,
                                                eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
     t.phased = s.rayleigh_unphased * atm_rayleigh_phase(st.nu) + s.multiple_per_sr;
     t.mie = s.mie_unphased;
