@@ -147,7 +147,8 @@ AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans,
     t.phased = atm_samples_to_rgb(s.phased, weights, n_weights);
     t.mie = atm_samples_to_rgb(s.mie, weights, n_weights);
     t.third = atm_samples_to_rgb(s.third, weights, n_weights);
-    if (uv.y >= 0.5) t.third = t.third / max(atm_samples_to_rgb(vec3(1.0), weights, n_weights), vec3(1e-30));
+    // A transmittance is never negative, though a deep-red one lies outside the sRGB gamut.
+    if (uv.y >= 0.5) t.third = max(t.third / max(atm_samples_to_rgb(vec3(1.0), weights, n_weights), vec3(1e-30)), vec3(0.0));
     return t;
 }
 
@@ -172,7 +173,8 @@ AtmosphereSkyViewTexel atm_compute_sky_view6(AtmosphereParams a, sampler2D trans
     t.phased = atm_samples6_to_rgb(s.phased, s2.phased, weights, n_weights);
     t.mie = atm_samples6_to_rgb(s.mie, s2.mie, weights, n_weights);
     t.third = atm_samples6_to_rgb(s.third, s2.third, weights, n_weights);
-    if (uv.y >= 0.5) t.third = t.third / max(atm_samples6_to_rgb(vec3(1.0), vec3(1.0), weights, n_weights), vec3(1e-30));
+    if (uv.y >= 0.5)
+        t.third = max(t.third / max(atm_samples6_to_rgb(vec3(1.0), vec3(1.0), weights, n_weights), vec3(1e-30)), vec3(0.0));
     return t;
 }
 
