@@ -1,5 +1,6 @@
 #include "atmosphere/production_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -9,11 +10,44 @@
 namespace cupola::atmosphere {
 using namespace cupola::shading;
 
+namespace {
+// Ozone: band averages rather than point values. The Chappuis band peaks near 600 nm, between
+// the green and red samples, where the eye is most sensitive; point values at 550/680 nm miss
+// it, which made long ozone paths (twilight, the ground seen from space) 5-15 % too bright.
+// Each channel takes the mean over a hat function linear in lambda through the reconstruction's
+// sample wavelengths `grid` (increasing; close to, not the same as, atm_samples_to_xyz's log-log
+// reconstruction), weighted by the solar spectrum times the CIE y function.
+double band_ozone(const AtmosphereParameters& p, double lambda, const std::vector<double>& grid) {
+    double num = 0.0, den = 0.0;
+    for (double l = 360.0; l <= 830.0; l += 1.0) {
+        double hat = 0.0;
+        for (std::size_t i = 0; i < grid.size(); ++i) {
+            if (grid[i] != lambda) continue;
+            const double lo = i > 0 ? grid[i - 1] : -1e9, hi = i + 1 < grid.size() ? grid[i + 1] : 1e9;
+            if (l <= lambda)
+                hat = i == 0 ? 1.0 : std::max(0.0, (l - lo) / (lambda - lo));
+            else
+                hat = i + 1 == grid.size() ? 1.0 : std::max(0.0, (hi - l) / (hi - lambda));
+        }
+        const double w = p.solar_irradiance(l) * cie1931_xyz_bar(l).y;
+        num += hat * w * p.ozone_absorption(l);
+        den += hat * w;
+    }
+    return num / std::max(den, 1e-300);
+}
+}  // namespace
+
 AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
-    auto at3 = [](auto fn) {
-        return vec3(static_cast<float>(fn(kProductionWavelengths[0])),
-                    static_cast<float>(fn(kProductionWavelengths[1])),
-                    static_cast<float>(fn(kProductionWavelengths[2])));
+    return to_shader_params(p,
+                            glm::dvec3(kProductionWavelengths[0], kProductionWavelengths[1], kProductionWavelengths[2]),
+                            {kProductionWavelengths[2], kProductionWavelengths[1], kProductionWavelengths[0]});
+}
+
+AtmosphereParams to_shader_params(const AtmosphereParameters& p, const glm::dvec3& lambdas_nm,
+                                  const std::vector<double>& grid_nm) {
+    auto at3 = [&](auto fn) {
+        return vec3(static_cast<float>(fn(lambdas_nm.x)), static_cast<float>(fn(lambdas_nm.y)),
+                    static_cast<float>(fn(lambdas_nm.z)));
     };
     AtmosphereParams a{};
     a.bottom_radius_m = static_cast<float>(p.bottom_radius);
@@ -24,36 +58,19 @@ AtmosphereParams to_shader_params(const AtmosphereParameters& p) {
     a.mie_extinction_per_m = at3([&](double l) { return p.mie_extinction(l); });
     a.mie_scale_height_m = static_cast<float>(p.mie_scale_height);
     a.mie_g = static_cast<float>(p.mie_g);
-    // Ozone: band averages rather than point values. The Chappuis band peaks near 600 nm, between
-    // the green and red samples, where the eye is most sensitive; point values at 550/680 nm miss
-    // it, which made long ozone paths (twilight, the ground seen from space) 5-15 % too bright.
-    // Each channel takes the mean over a hat function linear in lambda through the three sample
-    // wavelengths (close to, not the same as, atm_samples_to_xyz's log-log reconstruction),
-    // weighted by the solar spectrum times the CIE y function.
-    {
-        const double lr = kProductionWavelengths[0], lg = kProductionWavelengths[1], lb = kProductionWavelengths[2];
-        glm::dvec3 num(0.0), den(0.0);
-        for (double l = 360.0; l <= 830.0; l += 1.0) {
-            glm::dvec3 hat(0.0);
-            if (l <= lb)
-                hat.z = 1.0;
-            else if (l <= lg)
-                hat.y = (l - lb) / (lg - lb), hat.z = 1.0 - hat.y;
-            else if (l <= lr)
-                hat.x = (l - lg) / (lr - lg), hat.y = 1.0 - hat.x;
-            else
-                hat.x = 1.0;
-            const double w = p.solar_irradiance(l) * cie1931_xyz_bar(l).y;
-            num += hat * w * p.ozone_absorption(l);
-            den += hat * w;
-        }
-        a.ozone_absorption_per_m = vec3(num / glm::max(den, glm::dvec3(1e-300)));
-    }
+    a.ozone_absorption_per_m = at3([&](double l) { return band_ozone(p, l, grid_nm); });
     a.ozone_bottom_m = static_cast<float>(p.ozone_bottom);
     a.ozone_peak_m = static_cast<float>(p.ozone_peak);
     a.ozone_top_m = static_cast<float>(p.ozone_top);
     a.ground_albedo = at3([&](double l) { return p.ground_albedo(l); });
     return a;
+}
+
+std::vector<double> sky_view_wavelength_grid() {
+    std::vector<double> g(kProductionWavelengths, kProductionWavelengths + 3);
+    g.insert(g.end(), kProductionWavelengths2, kProductionWavelengths2 + 3);
+    std::sort(g.begin(), g.end());
+    return g;
 }
 
 AtmosphereAnalyticFit fit_analytic_sun(const AtmosphereParams& a) {
@@ -92,10 +109,19 @@ AtmosphereAnalyticFit fit_analytic_sun(const AtmosphereParams& a) {
 ProductionAtmosphere::ProductionAtmosphere(AtmosphereParameters params, ProductionQuality quality,
                                            const TableCacheOptions& cache)
     : params_(std::move(params)), quality_(std::move(quality)) {
-    gpu_ = to_shader_params(params_);
+    const bool six = quality_.sky_view && quality_.sky_view_wavelengths == 6;
+    if (six) {
+        const std::vector<double> grid = sky_view_wavelength_grid();
+        const auto triplet = [](const double* l) { return glm::dvec3(l[0], l[1], l[2]); };
+        gpu_ = to_shader_params(params_, triplet(kProductionWavelengths), grid);
+        gpu2_ = to_shader_params(params_, triplet(kProductionWavelengths2), grid);
+    } else {
+        gpu_ = to_shader_params(params_);
+    }
     color_weights_ = production_color_weights(params_);
     if (quality_.analytic) fit_ = fit_analytic_sun(gpu_);
     tables_ = load_or_build_tables(params_, gpu_, quality_, cache);
+    if (six) tables2_ = load_or_build_tables(params_, gpu2_, quality_, cache, "610-500-400");
 }
 
 vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance) const {

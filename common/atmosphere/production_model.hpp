@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <utility>
+#include <vector>
 
 #include "atmosphere/atmosphere_parameters.hpp"
 #include "atmosphere/production_color.hpp"
@@ -26,9 +27,18 @@ namespace cupola::atmosphere {
 
 // The sample wavelengths of the three channels (defined once, in atmosphere_color.glsl).
 inline const double kProductionWavelengths[3] = {shading::ATM_LAMBDA_R, shading::ATM_LAMBDA_G, shading::ATM_LAMBDA_B};
+// The sky-view level's second triplet (atmosphere_color.glsl).
+inline const double kProductionWavelengths2[3] = {shading::ATM_LAMBDA2_R, shading::ATM_LAMBDA2_G,
+                                                  shading::ATM_LAMBDA2_B};
 
 // The uniform struct of the shared code, at the three sample wavelengths.
 shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p);
+// The same at the wavelengths `lambdas_nm` (channels x, y, z), each one a node of the spectral
+// reconstruction's grid `grid_nm` (increasing), over which the ozone is band-averaged.
+shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p, const glm::dvec3& lambdas_nm,
+                                           const std::vector<double>& grid_nm);
+// The six sample wavelengths of the sky-view level, increasing.
+std::vector<double> sky_view_wavelength_grid();
 
 // Fit of the analytic mode's sunlight function E_sun (Ekelin & Fernqvist 2009, section 3.2.1) to
 // the model's own transmittance toward the Sun at half a Rayleigh scale height (least squares over
@@ -53,6 +63,11 @@ public:
     const shading::AtmosphereParams& shader_params() const { return gpu_; }
     const shading::AtmosphereAnalyticFit& analytic_fit() const { return fit_; }
     const ProductionTables& tables() const { return tables_; }
+    // The second triplet (kProductionWavelengths2) of a six-wavelength sky-view level, with its
+    // tables; otherwise unset (empty tables).
+    bool six_wavelengths() const { return quality_.sky_view && quality_.sky_view_wavelengths == 6; }
+    const shading::AtmosphereParams& shader_params2() const { return gpu2_; }
+    const ProductionTables& tables2() const { return tables2_; }
     const shading::Texture2DData& color_weights() const { return color_weights_; }
     // Per unit solar irradiance at the sample wavelengths -> CIE XYZ (Y in cd m^-2).
     glm::dvec3 to_xyz(const glm::vec3& f) const;
@@ -78,9 +93,9 @@ private:
 
     AtmosphereParameters params_;
     ProductionQuality quality_;
-    shading::AtmosphereParams gpu_{};
+    shading::AtmosphereParams gpu_{}, gpu2_{};
     shading::AtmosphereAnalyticFit fit_{};
-    ProductionTables tables_;
+    ProductionTables tables_, tables2_;
     shading::Texture2DData color_weights_;
     struct SkyViewCache {  // tables by (d_m, mu_s); shared by copies of the model (same parameters)
         std::mutex mutex;

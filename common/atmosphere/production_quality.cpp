@@ -10,7 +10,8 @@ std::string ProductionQuality::table_key() const {
            std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + "o" +
            std::to_string(ms_orders) + ";E" + std::to_string(irradiance_width) + "x" +
            std::to_string(irradiance_height) + "d" + std::to_string(irradiance_directions) + "s" +
-           std::to_string(irradiance_samples) + (multiple_scattering ? ";ms" : ";single");
+           std::to_string(irradiance_samples) + (multiple_scattering ? ";ms" : ";single") +
+           (sky_view && sky_view_wavelengths == 6 ? ";w6" : "");
 }
 
 namespace {
@@ -63,6 +64,7 @@ ProductionQuality production_quality(const std::string& name) {
     if (name == "sky") {
         ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
         q.sky_view = true;
+        q.sky_view_wavelengths = 6;
         return q;
     }
     if (name == "high") return level(name, 512, 128, 80, 64, 128, 40, 128, 32, 128, 32, 32);

@@ -20,6 +20,9 @@ struct ProductionQuality {
     // per-pixel march; its size (W x H, H even) and march steps per texel.
     bool sky_view = false;
     int sky_view_width = 96, sky_view_height = 128, sky_view_samples = 32;
+    // Sample wavelengths of the table's march: 3 (680/550/440 nm, as the march levels) or 6 (a
+    // second triplet 610/500/400 nm with its own tables, atmosphere_color.glsl).
+    int sky_view_wavelengths = 3;
 
     // The table-defining fields (not view_samples): what the disk cache key covers.
     std::string table_key() const;

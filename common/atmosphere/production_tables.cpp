@@ -116,10 +116,10 @@ std::string default_table_cache_directory() {
     return ".cupola-cache/atmosphere";
 }
 
-std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q) {
+std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q, const std::string& variant) {
     // The texts of the shared code that computes the tables are part of the key: a change to the
     // model's code can never reuse tables the old code built.
-    std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key();
+    std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key() + "|" + variant;
     for (const char* f : kSharedShadingFiles) text += shader_source(f);
     unsigned char h[12];
     crypto_generichash(h, sizeof h, reinterpret_cast<const unsigned char*>(text.data()), text.size(), nullptr, 0);
@@ -192,8 +192,9 @@ ProductionTables build_production_tables(const std::string& label, const shading
 }
 
 ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shading::AtmosphereParams& gpu,
-                                      const ProductionQuality& q, const TableCacheOptions& cache) {
-    const std::string key = table_cache_key(p, q);
+                                      const ProductionQuality& q, const TableCacheOptions& cache,
+                                      const std::string& variant) {
+    const std::string key = table_cache_key(p, q, variant);
     const fs::path dir =
         cache.directory.empty() ? fs::path(default_table_cache_directory()) : fs::path(cache.directory);
     const std::string stem = (p.name.empty() ? std::string("atmosphere") : p.name) + "-" + key;

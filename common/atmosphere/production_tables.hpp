@@ -35,8 +35,9 @@ struct TableCacheOptions {
 std::string default_table_cache_directory();
 
 // Hash (hex) of everything the tables depend on: parameters, table settings, format version and
-// the text of the shared shading code.
-std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q);
+// the text of the shared shading code. `variant` names a table set of other sample wavelengths
+// (the sky-view level's second triplet, production_model.hpp): "" for the first.
+std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q, const std::string& variant = "");
 
 // Computes the tables (no cache), with a progress bar labelled by the atmosphere name.
 ProductionTables build_production_tables(const std::string& label, const shading::AtmosphereParams& gpu,
@@ -46,6 +47,7 @@ ProductionTables build_production_tables(const std::string& label, const shading
 // A damaged cache file is logged and rebuilt; a cache directory that cannot be written is
 // logged and the tables are used from memory.
 ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shading::AtmosphereParams& gpu,
-                                      const ProductionQuality& q, const TableCacheOptions& cache);
+                                      const ProductionQuality& q, const TableCacheOptions& cache,
+                                      const std::string& variant = "");
 
 }  // namespace cupola::atmosphere

@@ -23,11 +23,17 @@ SkyViewTable build_sky_view_table(const ProductionAtmosphere& m, float d_m, floa
     const vec2 mss(tables.multiple_scattering.width, tables.multiple_scattering.height);
     const vec2 es(tables.irradiance.width, tables.irradiance.height);
     const float n = static_cast<float>(m.color_weights().width);
+    const ProductionTables& t2 = m.tables2();
+    const sampler2D trans2{&t2.transmittance}, ms2{&t2.multiple_scattering}, irr2{&t2.irradiance};
     for (int y = 0; y < q.sky_view_height; ++y)
         for (int x = 0; x < q.sky_view_width; ++x) {
             const vec2 uv((x + 0.5f) / size.x, (y + 0.5f) / size.y);
-            const AtmosphereSkyViewTexel t = atm_compute_sky_view(m.shader_params(), trans, ts, ms, mss, irr, es,
-                                                                  weights, n, d_m, mu_s, uv, size, q.sky_view_samples);
+            const AtmosphereSkyViewTexel t =
+                m.six_wavelengths()
+                    ? atm_compute_sky_view6(m.shader_params(), trans, ts, ms, mss, irr, es, m.shader_params2(), trans2,
+                                            ms2, irr2, weights, n, d_m, mu_s, uv, size, q.sky_view_samples)
+                    : atm_compute_sky_view(m.shader_params(), trans, ts, ms, mss, irr, es, weights, n, d_m, mu_s, uv,
+                                           size, q.sky_view_samples);
             const size_t i = static_cast<size_t>(y) * q.sky_view_width + x;
             out.parts[0].texels[i] = glm::vec4(t.phased, 1.0f);
             out.parts[1].texels[i] = glm::vec4(t.mie, 1.0f);

@@ -12,12 +12,14 @@
 //   camera inside the atmosphere, view zenith cosine mu, horizon mu_h < 0:
 //     sky    mu = mu_h + (1 - mu_h) x^2           ground mu = mu_h - (1 + mu_h) x^2
 //   camera outside, impact parameter rho (distance of the ray's line from the centre):
-//     sky    rho = R + (top - R) x^2              ground rho = R (1 - x^2)
+//     sky    rho = R + (top - R) x^2 (3 - 2 x)   ground rho = R (1 - x^2)
+// (the sky's rows seen from outside are dense at both ends: at the limb, and where the rays
+// graze the top of the atmosphere and their light falls to 0 over the last few kilometres).
 // Columns: the azimuth phi in [0, pi] between the view and the Sun about the camera's zenith (the
 // atmosphere is symmetric about the plane of the zenith and the Sun), as sin(phi / 2), which keeps
 // the columns dense toward the Sun. Texel centres sit on the ends of each range (Bruneton 2017),
-// as in atmosphere_lut_mapping.glsl. Every coordinate comes from cosines and square roots: a
-// pixel's look-up needs no inverse trigonometric function.
+// as in atmosphere_lut_mapping.glsl. Inside the atmosphere every coordinate comes from cosines
+// and square roots: a pixel's look-up needs no inverse trigonometric function.
 //
 // A texel holds linear sRGB per unit solar irradiance (times the scene's solar scale, scene units):
 //   0  single Rayleigh scattering with its phase at the texel's nu, plus the multiple scattering;
@@ -43,7 +45,8 @@ float atm_sky_view_x(AtmosphereParams a, bool outside, float mu_h, bool ground, 
     float R = a.bottom_radius_m;
     if (outside) {
         if (ground) return sqrt(clamp((R - q) / R, 0.0, 1.0));
-        return sqrt(clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0));
+        float y = clamp((q - R) / (a.top_radius_m - R), 0.0, 1.0);
+        return 0.5 - sin(asin(1.0 - 2.0 * y) / 3.0);  // the inverse of y = x^2 (3 - 2 x)
     }
     if (ground) return sqrt(clamp((mu_h - q) / (1.0 + mu_h), 0.0, 1.0));
     return sqrt(clamp((q - mu_h) / (1.0 - mu_h), 0.0, 1.0));
@@ -54,7 +57,7 @@ float atm_sky_view_q(AtmosphereParams a, bool outside, float mu_h, bool ground, 
     float R = a.bottom_radius_m;
     if (outside) {
         if (ground) return R * (1.0 - x * x);
-        return R + (a.top_radius_m - R) * x * x;
+        return R + (a.top_radius_m - R) * x * x * (3.0 - 2.0 * x);
     }
     if (ground) return mu_h - (1.0 + mu_h) * x * x;
     return mu_h + (1.0 - mu_h) * x * x;
@@ -101,16 +104,16 @@ vec3 atm_samples_to_rgb(vec3 f, sampler2D weights, float n) {
     return xyz_to_linear_srgb(atm_samples_to_xyz(f, weights, n));
 }
 
-// One texel of the table: the march along its ray (`samples` steps, no shadows) and the colour of
-// each part. t[0..2] as in the header.
-AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
-                                            vec2 ms_size, sampler2D irr, vec2 irr_size, sampler2D weights,
-                                            float n_weights, float d_m, float mu_s, vec2 uv, vec2 size,
-                                            int samples) {
+// The parts of one texel at one triplet's sample wavelengths: the march along its ray (`samples`
+// steps, no shadows). A ray that misses the atmosphere has no in-scatter, transmittance 1 (sky)
+// and no ground radiance (ground).
+AtmosphereSkyViewSamples atm_sky_view_samples(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                              vec2 ms_size, sampler2D irr, vec2 irr_size, float d_m, float mu_s,
+                                              vec2 uv, vec2 size, int samples) {
     vec3 v = atm_sky_view_direction(a, d_m, uv, size);
     vec3 sun = atm_sky_view_sun(mu_s);
     AtmosphereRayStart st = atm_ray_start(a, d_m, v, vec3(0.0, 0.0, -1.0), sun);
-    AtmosphereSkyViewTexel t;
+    AtmosphereSkyViewSamples t;
     t.phased = vec3(0.0);
     t.mie = vec3(0.0);
     t.third = vec3(1.0);
@@ -119,20 +122,63 @@ AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans,
         if (ground) t.third = vec3(0.0);
         return t;
     }
+    // The half decides whether the ray ends on the ground, not the rounding of its (r, mu): the
+    // horizon row's ray is tangent to the ground in exact arithmetic.
+    float t_end = ground ? atm_distance_to_ground(a, st.r_m, st.mu) : atm_distance_to_top(a, st.r_m, st.mu);
     AtmosphereSplitSegment s = atm_march_split(a, trans, trans_size, ms, ms_size, true, st.r_m, st.mu, st.mu_s, st.nu,
-                                               atm_view_ray_length(a, st, -1.0), samples,
+                                               t_end, samples,
                                                eclipse_ray(eclipse_no_casters(), vec2(1.0), vec3(0.0), vec3(0.0)), trans);
-    t.phased = atm_samples_to_rgb(s.rayleigh_unphased * atm_rayleigh_phase(st.nu) + s.multiple_per_sr, weights, n_weights);
-    t.mie = atm_samples_to_rgb(s.mie_unphased, weights, n_weights);
+    t.phased = s.rayleigh_unphased * atm_rayleigh_phase(st.nu) + s.multiple_per_sr;
+    t.mie = s.mie_unphased;
+    t.third = s.transmittance;
     if (ground) {
         float len = atm_distance_to_ground(a, st.r_m, st.mu);
         float mu_s_g = atm_mu_s_at(st.r_m, st.mu_s, st.nu, len, max(atm_radius_at(st.r_m, st.mu, len), a.bottom_radius_m));
         vec3 e = atm_surface_illuminance(a, trans, trans_size, irr, irr_size, a.bottom_radius_m, mu_s_g);
-        t.third = atm_samples_to_rgb(s.transmittance * e * (1.0 / CUPOLA_PI), weights, n_weights);
-    } else {
-        vec3 white = atm_samples_to_rgb(vec3(1.0), weights, n_weights);
-        t.third = atm_samples_to_rgb(s.transmittance, weights, n_weights) / max(white, vec3(1e-30));
+        t.third = s.transmittance * e * (1.0 / CUPOLA_PI);
     }
+    return t;
+}
+
+// One texel of the table from one triplet (three sample wavelengths): t[0..2] as in the header.
+AtmosphereSkyViewTexel atm_compute_sky_view(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                            vec2 ms_size, sampler2D irr, vec2 irr_size, sampler2D weights,
+                                            float n_weights, float d_m, float mu_s, vec2 uv, vec2 size,
+                                            int samples) {
+    AtmosphereSkyViewSamples s =
+        atm_sky_view_samples(a, trans, trans_size, ms, ms_size, irr, irr_size, d_m, mu_s, uv, size, samples);
+    AtmosphereSkyViewTexel t;
+    t.phased = atm_samples_to_rgb(s.phased, weights, n_weights);
+    t.mie = atm_samples_to_rgb(s.mie, weights, n_weights);
+    t.third = atm_samples_to_rgb(s.third, weights, n_weights);
+    // A transmittance is never negative, though a deep-red one lies outside the sRGB gamut.
+    if (uv.y >= 0.5) t.third = max(t.third / max(atm_samples_to_rgb(vec3(1.0), weights, n_weights), vec3(1e-30)), vec3(0.0));
+    return t;
+}
+
+// Linear sRGB of a spectrum given at six sample wavelengths (atm_samples6_to_xyz).
+vec3 atm_samples6_to_rgb(vec3 f, vec3 f2, sampler2D weights, float n) {
+    return xyz_to_linear_srgb(atm_samples6_to_xyz(f, f2, weights, n));
+}
+
+// One texel from two triplets: `a` (680/550/440 nm) with its tables and `a2` (610/500/400 nm,
+// atmosphere_color.glsl) with its own; the same rays marched at both, each part's spectrum
+// rebuilt from the six samples. Twice the march of atm_compute_sky_view; the look-up is the same.
+AtmosphereSkyViewTexel atm_compute_sky_view6(AtmosphereParams a, sampler2D trans, vec2 trans_size, sampler2D ms,
+                                             vec2 ms_size, sampler2D irr, vec2 irr_size, AtmosphereParams a2,
+                                             sampler2D trans2, sampler2D ms2, sampler2D irr2, sampler2D weights,
+                                             float n_weights, float d_m, float mu_s, vec2 uv, vec2 size,
+                                             int samples) {
+    AtmosphereSkyViewSamples s =
+        atm_sky_view_samples(a, trans, trans_size, ms, ms_size, irr, irr_size, d_m, mu_s, uv, size, samples);
+    AtmosphereSkyViewSamples s2 =
+        atm_sky_view_samples(a2, trans2, trans_size, ms2, ms_size, irr2, irr_size, d_m, mu_s, uv, size, samples);
+    AtmosphereSkyViewTexel t;
+    t.phased = atm_samples6_to_rgb(s.phased, s2.phased, weights, n_weights);
+    t.mie = atm_samples6_to_rgb(s.mie, s2.mie, weights, n_weights);
+    t.third = atm_samples6_to_rgb(s.third, s2.third, weights, n_weights);
+    if (uv.y >= 0.5)
+        t.third = max(t.third / max(atm_samples6_to_rgb(vec3(1.0), vec3(1.0), weights, n_weights), vec3(1e-30)), vec3(0.0));
     return t;
 }
 

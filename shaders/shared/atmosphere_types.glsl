@@ -62,6 +62,14 @@ struct AtmosphereSplitSegment {
     vec3 transmittance;
 };
 
+// The same three parts before colour: per unit solar irradiance at one triplet's sample
+// wavelengths (third: the transmittance, sky half, or the white ground's radiance, ground half).
+struct AtmosphereSkyViewSamples {
+    vec3 phased;
+    vec3 mie;
+    vec3 third;
+};
+
 // One texel of the sky-view table (atmosphere_sky_view.glsl): its three parts, linear sRGB.
 struct AtmosphereSkyViewTexel {
     vec3 phased;  // single Rayleigh with its phase, plus multiple scattering
