@@ -277,11 +277,11 @@ TEST(AtmosphereRender, GpuMatchesCpuFromTheGround) { expect_gpu_matches_cpu("low
 
 TEST(AtmosphereRender, GpuMatchesCpuFromTheGroundAnalytic) { expect_gpu_matches_cpu("analytic"); }
 
-TEST(AtmosphereRender, GpuMatchesCpuFromTheGroundSkyView) { expect_gpu_matches_cpu("sky"); }
+TEST(AtmosphereRender, GpuMatchesCpuFromTheGroundSkyView) { expect_gpu_matches_cpu("sky-view"); }
 
 // From 400 km, looking 20 degrees down at the limb: the sky-view table's outside half.
 TEST(AtmosphereRender, GpuMatchesCpuFromOrbitSkyView) {
-    expect_gpu_matches_cpu("sky", ground_snapshot(400e3, -20.0, 60.0, 20.0), false);
+    expect_gpu_matches_cpu("sky-view", ground_snapshot(400e3, -20.0, 60.0, 20.0), false);
 }
 
 void expect_no_seam(const std::string& model);
@@ -289,7 +289,7 @@ void expect_no_seam(const std::string& model);
 TEST(AtmosphereRender, NoSeamBetweenChannels) { expect_no_seam("low"); }
 
 // The sky-view table depends on nothing of the channel: narrow channels equal the wide one.
-TEST(AtmosphereRender, NoSeamBetweenChannelsSkyView) { expect_no_seam("sky"); }
+TEST(AtmosphereRender, NoSeamBetweenChannelsSkyView) { expect_no_seam("sky-view"); }
 
 void expect_no_seam(const std::string& model) {
     context();

@@ -1,7 +1,7 @@
 // Tests of the sky-view table (shaders/shared/atmosphere_sky_view.glsl compiled as C++,
 // common/atmosphere/sky_view_table.cpp): the table mapping's round trips in both halves, from
 // inside and outside the atmosphere and from 1 AU; the horizon and limb rows; finite,
-// non-negative texels in the hard cases; and the "sky" level's error against the stored
+// non-negative texels in the hard cases; and the "sky-view" level's error against the stored
 // reference dataset (data/atmosphere/earth_reference.csv), a regression guard on errors.
 #include <gtest/gtest.h>
 
@@ -37,10 +37,10 @@ std::vector<float> camera_distances() {
     return {R + 2.0f, R + 10000.0f, R + 59000.0f, R + 100000.0f, R + 400000.0f, 1.495978707e11f};
 }
 
-// A small model of the "sky" level for the table checks (its tables built here, not cached).
+// A small model of the "sky-view" level for the table checks (its tables built here, not cached).
 const at::ProductionAtmosphere& small_sky_model() {
     static const at::ProductionAtmosphere m = [] {
-        at::ProductionQuality q = at::production_quality("sky");
+        at::ProductionQuality q = at::production_quality("sky-view");
         q.sky_view_width = 16;
         q.sky_view_height = 24;
         q.sky_view_samples = 8;
@@ -185,7 +185,7 @@ TEST(SkyViewTable, FromOrbitTheTopRowGrazesTheTopOfTheAtmosphere) {
 TEST(SkyViewVsReference, TheSkyLevelKeepsItsErrorsAgainstTheStoredReference) {
     const at::ReferenceDataset ref = at::read_reference_dataset(source_path("data/atmosphere/earth_reference.csv"));
     ASSERT_EQ(ref.hash, at::AtmosphereParameters::earth().hash_hex()) << "stale reference dataset";
-    const at::ProductionAtmosphere m(at::AtmosphereParameters::earth(), at::production_quality("sky"), no_cache());
+    const at::ProductionAtmosphere m(at::AtmosphereParameters::earth(), at::production_quality("sky-view"), no_cache());
     // The daylight sets (sun zenith <= 80 degrees) pooled, as one dataset of their rows.
     at::ReferenceDataset day = ref;
     day.rows.clear();

@@ -35,7 +35,7 @@ ProductionQuality level(const std::string& name, int tw, int th, int ts, int ms,
 }  // namespace
 
 std::vector<std::string> production_quality_names() {
-    return {"analytic", "single", "hillaire", "low", "medium", "high", "ultra", "sky"};
+    return {"analytic", "single", "hillaire", "low", "medium", "sky-view-rgb", "sky-view"};
 }
 
 ProductionQuality production_quality(const std::string& name) {
@@ -61,14 +61,12 @@ ProductionQuality production_quality(const std::string& name) {
         return q;
     }
     if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
-    if (name == "sky") {
+    if (name == "sky-view" || name == "sky-view-rgb") {  // medium's tables, looked up through a sky-view table
         ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
         q.sky_view = true;
-        q.sky_view_wavelengths = 6;
+        q.sky_view_wavelengths = name == "sky-view" ? 6 : 3;
         return q;
     }
-    if (name == "high") return level(name, 512, 128, 80, 64, 128, 40, 128, 32, 128, 32, 32);
-    if (name == "ultra") return level(name, 1024, 256, 160, 64, 256, 64, 128, 32, 256, 64, 64);
     std::string list;
     for (const auto& n : production_quality_names()) list += (list.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown atmosphere model '" + name + "' (expected one of: " + list + ")");

@@ -29,10 +29,12 @@ struct ProductionQuality {
 };
 
 // The named levels: "analytic", "single" (tables, no multiple scattering), "hillaire" (medium
-// with Hillaire's geometric multiple-scattering tail), "low", "medium", "high", "ultra". Throws std::invalid_argument
-// listing the valid names.
+// with Hillaire's geometric multiple-scattering tail), "low", "medium" (the per-pixel march: the
+// GPU-side reference), "sky-view-rgb" and "sky-view" (the default: medium's tables looked up
+// through a per-frame sky-view table, from three or six sample wavelengths). Throws
+// std::invalid_argument listing the valid names.
 ProductionQuality production_quality(const std::string& name);
 std::vector<std::string> production_quality_names();
-inline constexpr const char* kDefaultProductionQuality = "medium";
+inline constexpr const char* kDefaultProductionQuality = "sky-view";
 
 }  // namespace cupola::atmosphere

@@ -21,7 +21,7 @@ enum class BodyKind { Star, Planet, Moon };
 struct AtmosphereConfig {
     bool present = false;
     std::string preset;
-    std::string model = "medium";  // atmosphere::production_quality() name
+    std::string model = "sky-view";  // atmosphere::production_quality() name
     atmosphere::AtmosphereParameters parameters;
 };
 

@@ -17,6 +17,13 @@ GlTexture table_texture(const shading::Texture2DData& t, GLenum filter) {
     return GlTexture(t.width, t.height, t.texels.data(), filter);
 }
 
+// A table of the second wavelength triplet, or a 1x1 placeholder for a model with one triplet.
+const shading::Texture2DData& second_table(const atmosphere::ProductionAtmosphere& m,
+                                           shading::Texture2DData atmosphere::ProductionTables::*table) {
+    static const shading::Texture2DData placeholder{1, 1, {glm::vec4(0.0f)}};
+    return m.six_wavelengths() ? m.tables2().*table : placeholder;
+}
+
 atmosphere::ProductionAtmosphere make_model(const BodyConfig& body) {
     const AtmosphereConfig& c = body.atmosphere;
     if (std::abs(c.parameters.bottom_radius - body.radius_m) > 1e-6 * body.radius_m)
@@ -70,7 +77,17 @@ GpuAtmosphere::GpuAtmosphere(const BodyConfig& body)
       transmittance_(table_texture(model_.tables().transmittance, GL_LINEAR)),
       multiple_scattering_(table_texture(model_.tables().multiple_scattering, GL_LINEAR)),
       irradiance_(table_texture(model_.tables().irradiance, GL_LINEAR)),
-      color_weights_(table_texture(model_.color_weights(), GL_NEAREST)) {}
+      color_weights_(table_texture(model_.color_weights(), GL_NEAREST)),
+      transmittance2_(table_texture(second_table(model_, &atmosphere::ProductionTables::transmittance), GL_LINEAR)),
+      multiple_scattering2_(
+          table_texture(second_table(model_, &atmosphere::ProductionTables::multiple_scattering), GL_LINEAR)),
+      irradiance2_(table_texture(second_table(model_, &atmosphere::ProductionTables::irradiance), GL_LINEAR)) {}
+
+void GpuAtmosphere::bind_second(GLuint first_unit) const {
+    transmittance2_.bind(first_unit);
+    multiple_scattering2_.bind(first_unit + 1);
+    irradiance2_.bind(first_unit + 2);
+}
 
 GpuSkyViewTable* GpuAtmosphere::sky_view() {
     if (!model_.quality().sky_view) return nullptr;

@@ -49,10 +49,14 @@ public:
     // The sky-view table of a sky-view level (null for the march levels), created on first use.
     GpuSkyViewTable* sky_view();
     const GpuSkyViewTable* sky_view_if_made() const { return sky_view_.get(); }
+    // The second wavelength triplet's transmittance, multiple scattering and irradiance (a
+    // six-wavelength sky-view level; 1x1 placeholders otherwise) to units first_unit .. + 2.
+    void bind_second(GLuint first_unit) const;
 
 private:
     atmosphere::ProductionAtmosphere model_;
     GlTexture transmittance_, multiple_scattering_, irradiance_, color_weights_;
+    GlTexture transmittance2_, multiple_scattering2_, irradiance2_;
     std::unique_ptr<GpuSkyViewTable> sky_view_;
 };
 

@@ -8,20 +8,20 @@ namespace {
 glm::vec2 size_of(const shading::Texture2DData& t) { return glm::vec2(t.width, t.height); }
 }  // namespace
 
-void set_atmosphere_params(const GlProgram& p, const shading::AtmosphereParams& a) {
-    p.set("u_atm.bottom_radius_m", a.bottom_radius_m);
-    p.set("u_atm.top_radius_m", a.top_radius_m);
-    p.set("u_atm.rayleigh_scattering_per_m", a.rayleigh_scattering_per_m);
-    p.set("u_atm.rayleigh_scale_height_m", a.rayleigh_scale_height_m);
-    p.set("u_atm.mie_scattering_per_m", a.mie_scattering_per_m);
-    p.set("u_atm.mie_extinction_per_m", a.mie_extinction_per_m);
-    p.set("u_atm.mie_scale_height_m", a.mie_scale_height_m);
-    p.set("u_atm.mie_g", a.mie_g);
-    p.set("u_atm.ozone_absorption_per_m", a.ozone_absorption_per_m);
-    p.set("u_atm.ozone_bottom_m", a.ozone_bottom_m);
-    p.set("u_atm.ozone_peak_m", a.ozone_peak_m);
-    p.set("u_atm.ozone_top_m", a.ozone_top_m);
-    p.set("u_atm.ground_albedo", a.ground_albedo);
+void set_atmosphere_params(const GlProgram& p, const shading::AtmosphereParams& a, const std::string& name) {
+    p.set((name + ".bottom_radius_m").c_str(), a.bottom_radius_m);
+    p.set((name + ".top_radius_m").c_str(), a.top_radius_m);
+    p.set((name + ".rayleigh_scattering_per_m").c_str(), a.rayleigh_scattering_per_m);
+    p.set((name + ".rayleigh_scale_height_m").c_str(), a.rayleigh_scale_height_m);
+    p.set((name + ".mie_scattering_per_m").c_str(), a.mie_scattering_per_m);
+    p.set((name + ".mie_extinction_per_m").c_str(), a.mie_extinction_per_m);
+    p.set((name + ".mie_scale_height_m").c_str(), a.mie_scale_height_m);
+    p.set((name + ".mie_g").c_str(), a.mie_g);
+    p.set((name + ".ozone_absorption_per_m").c_str(), a.ozone_absorption_per_m);
+    p.set((name + ".ozone_bottom_m").c_str(), a.ozone_bottom_m);
+    p.set((name + ".ozone_peak_m").c_str(), a.ozone_peak_m);
+    p.set((name + ".ozone_top_m").c_str(), a.ozone_top_m);
+    p.set((name + ".ground_albedo").c_str(), a.ground_albedo);
 }
 
 void bind_atmosphere_tables(const GlProgram& p, const GpuAtmosphere& atm, GLuint first_unit) {

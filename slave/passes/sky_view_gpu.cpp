@@ -17,7 +17,8 @@ GpuSkyViewTable::GpuSkyViewTable(const GpuAtmosphere& atmosphere)
       parts_{table_target(atmosphere.model().quality()), table_target(atmosphere.model().quality()),
              table_target(atmosphere.model().quality())},
       fbo_({&parts_[0], &parts_[1], &parts_[2]}),
-      program_("fullscreen.vert", "sky_view.frag") {}
+      program_("fullscreen.vert", "sky_view.frag",
+               std::string("#define SKY_SIX_WAVELENGTHS ") + (atmosphere.model().six_wavelengths() ? "1" : "0") + "\n") {}
 
 bool GpuSkyViewTable::update(float d_m, float mu_s) {
     if (d_m == d_m_ && mu_s == mu_s_) return false;
@@ -30,6 +31,13 @@ bool GpuSkyViewTable::update(float d_m, float mu_s) {
     program_.use();
     set_atmosphere_params(program_, m.shader_params());
     bind_atmosphere_tables(program_, atmosphere_, 0);
+    if (m.six_wavelengths()) {
+        set_atmosphere_params(program_, m.shader_params2(), "u_atm2");
+        atmosphere_.bind_second(4);
+        program_.set("u_transmittance2", 4);
+        program_.set("u_multiple_scattering2", 5);
+        program_.set("u_irradiance2", 6);
+    }
     program_.set("u_d_m", d_m);
     program_.set("u_mu_s", mu_s);
     program_.set("u_table_size", size());
