@@ -11,12 +11,15 @@
 // is also given as a ratio to it. Prints one JSON line per view (nlohmann-json):
 //   {"view", "size", "frames", "model", "renderer", "read_back", "frame_ms", "untimed_frame_ms",
 //    "trivial_ms", "ratio", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
-//    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "camera_altitude_m", "sun_zenith_deg"}
+//    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
+//    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end). With
 // --read-back every frame is also read back as RGBA32F (what a files sink needs) and that is
 // counted in both; by default nothing is read back. Medians over --frames after --warm-up (the
-// trivial pass: three samples per frame); the minima are given too, for a machine under load.
+// trivial pass: three samples per frame); the minima are given too, and the medians of the
+// process's CPU time (all threads) per frame and per trivial pass: on a software renderer on a
+// machine under load, that ratio is the one that does not depend on what else runs.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR]
 #include <CLI/CLI.hpp>
@@ -27,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
@@ -162,6 +166,14 @@ private:
     GLuint source_ = 0, target_ = 0, fbo_ = 0;
 };
 
+// CPU time of the whole process, every thread (llvmpipe's rasteriser threads too), in ms: on a
+// software renderer the work itself, whatever else the machine runs; on a GPU mostly waiting.
+double process_cpu_ms() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
@@ -215,6 +227,7 @@ ClusterConfig one_channel(int size) {
 // that drifts of the machine hit all three alike.
 struct ViewTimes {
     std::vector<double> trivial, frame, untimed, read_back;
+    std::vector<double> trivial_cpu, frame_cpu;  // the process's CPU time (all its threads)
     std::map<std::string, std::vector<double>> passes;
     std::vector<std::string> order;  // pass names in run order
 };
@@ -235,9 +248,15 @@ ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const Snapshot& snap
     }
     ViewTimes t;
     for (int i = 0; i < o.frames; ++i) {
-        for (int k = 0; k < kTrivialPerFrame; ++k) t.trivial.push_back(trivial.run());
+        for (int k = 0; k < kTrivialPerFrame; ++k) {
+            const double cpu0 = process_cpu_ms();
+            t.trivial.push_back(trivial.run());
+            t.trivial_cpu.push_back(process_cpu_ms() - cpu0);
+        }
         r.set_pass_timing(true);
+        const double cpu0 = process_cpu_ms();
         one_frame(r, snap, o.read_back);
+        t.frame_cpu.push_back(process_cpu_ms() - cpu0);
         r.set_pass_timing(false);
         const FrameTimings& ft = r.last_frame_timings();
         t.frame.push_back(ft.frame_ms);
@@ -271,6 +290,10 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["frame_min_ms"] = frame_min;
     j["trivial_min_ms"] = trivial_min;
     j["ratio_of_minima"] = trivial_min > 0.0 ? frame_min / trivial_min : 0.0;
+    const double trivial_cpu = median(t.trivial_cpu), frame_cpu = median(t.frame_cpu);
+    j["frame_cpu_ms"] = frame_cpu;
+    j["trivial_cpu_ms"] = trivial_cpu;
+    j["ratio_cpu"] = trivial_cpu > 0.0 ? frame_cpu / trivial_cpu : 0.0;
     nlohmann::ordered_json passes = nlohmann::ordered_json::object(), ratios = nlohmann::ordered_json::object();
     for (const auto& name : t.order) {
         const double ms = median(t.passes.at(name));

@@ -113,7 +113,7 @@ for line in open(sys.argv[1]):
     j = json.loads(line)
     passes = ", ".join(f"{k} {v:.2f}" for k, v in j["passes"].items())
     print(f"  {j['view']:7s} {j['size']}^2 read-back {'yes' if j['read_back'] else 'no '}: frame {j['frame_ms']:.2f} ms "
-          f"(untimed {j['untimed_frame_ms']:.2f}), trivial {j['trivial_ms']:.3f} ms, ratio {j['ratio']:.1f} (of minima {j['ratio_of_minima']:.1f}) | {passes}"
+          f"(untimed {j['untimed_frame_ms']:.2f}), trivial {j['trivial_ms']:.3f} ms, ratio {j['ratio']:.1f} (of minima {j['ratio_of_minima']:.1f}, of CPU times {j['ratio_cpu']:.1f}) | {passes}"
           + (f", read-back {j['read_back_ms']:.2f}" if j["read_back"] else ""))
 PY
 }

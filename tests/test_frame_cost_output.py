@@ -27,7 +27,8 @@ def check_line(line_no, line, size, read_back):
                       ("read_back", bool), ("frame_ms", float), ("untimed_frame_ms", float),
                       ("trivial_ms", float), ("ratio", float), ("passes", dict), ("passes_ratio", dict),
                       ("read_back_ms", float), ("frame_min_ms", float), ("trivial_min_ms", float),
-                      ("ratio_of_minima", float)):
+                      ("ratio_of_minima", float), ("frame_cpu_ms", float), ("trivial_cpu_ms", float),
+                      ("ratio_cpu", float)):
         if key not in j:
             sys.exit(f"{where}: no \"{key}\" in {sorted(j)}")
         value = j[key]
