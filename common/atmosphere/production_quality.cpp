@@ -62,7 +62,7 @@ ProductionQuality production_quality(const std::string& name) {
     }
     if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
     if (name == "sky-view" || name == "sky-view-rgb") {  // medium's tables, looked up through a sky-view table
-        ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+        ProductionQuality q = level(name, 256, 64, 40, 64, 64, 20, 128, 32, 64, 16, 16);
         q.sky_view = true;
         q.sky_view_wavelengths = name == "sky-view" ? 6 : 3;
         return q;

@@ -12,7 +12,8 @@ namespace cupola {
 class GpuAtmosphere;
 
 // `name`: the uniform struct's name in the shader.
-void set_atmosphere_params(const GlProgram& program, const shading::AtmosphereParams& a, const std::string& name = "u_atm");
+void set_atmosphere_params(const GlProgram& program, const shading::AtmosphereParams& a,
+                           const std::string& name = "u_atm");
 // Binds the model's tables to units first_unit .. first_unit + 3 and sets the samplers and sizes.
 void bind_atmosphere_tables(const GlProgram& program, const GpuAtmosphere& atmosphere, GLuint first_unit);
 

@@ -17,8 +17,9 @@ GpuSkyViewTable::GpuSkyViewTable(const GpuAtmosphere& atmosphere)
       parts_{table_target(atmosphere.model().quality()), table_target(atmosphere.model().quality()),
              table_target(atmosphere.model().quality())},
       fbo_({&parts_[0], &parts_[1], &parts_[2]}),
-      program_("fullscreen.vert", "sky_view.frag",
-               std::string("#define SKY_SIX_WAVELENGTHS ") + (atmosphere.model().six_wavelengths() ? "1" : "0") + "\n") {}
+      program_(
+          "fullscreen.vert", "sky_view.frag",
+          std::string("#define SKY_SIX_WAVELENGTHS ") + (atmosphere.model().six_wavelengths() ? "1" : "0") + "\n") {}
 
 bool GpuSkyViewTable::update(float d_m, float mu_s) {
     if (d_m == d_m_ && mu_s == mu_s_) return false;

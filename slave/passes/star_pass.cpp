@@ -30,8 +30,9 @@ double StarPass::visible_magnitude(double exposure) const {
 
 int StarPass::prepare(const FrameContext& frame) {
     view_ = &frame.view;
-    magnitude_limit_ = std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
-                                 visible_magnitude(frame.snap->settings.exposure)});
+    magnitude_limit_ =
+        std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
+                  visible_magnitude(frame.snap->settings.exposure)});
     const bool any = !magnitudes_.empty() && magnitudes_.front() <= magnitude_limit_;
     return any ? 1 : 0;
 }
