@@ -41,7 +41,7 @@ TEST(AtmosphereProbe, AnswersOneJsonObjectPerQueryLine) {
     }
     EXPECT_EQ(n, 2);
     // The four numbers as arguments give the same answer as on stdin.
-    const auto [s2, one] = run(probe() + " --model medium 0 60 30 0");
+    const auto [s2, one] = run(probe() + " 0 60 30 0");
     ASSERT_EQ(s2, 0);
     EXPECT_EQ(nlohmann::json::parse(one)["production"],
               nlohmann::json::parse(out.substr(0, out.find('\n')))["production"]);
