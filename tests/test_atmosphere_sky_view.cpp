@@ -49,13 +49,6 @@ const at::ProductionAtmosphere& small_sky_model() {
     return m;
 }
 
-// Linear sRGB -> CIE XYZ: the inverse of xyz_to_linear_srgb (star_color.glsl).
-glm::dvec3 srgb_to_xyz(const glm::dvec3& rgb) {
-    static const glm::dmat3 inverse = glm::inverse(
-        glm::transpose(glm::dmat3(3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570)));
-    return inverse * rgb;
-}
-
 // The row mapping for a camera distance d: q is the view zenith cosine inside, the impact
 // parameter outside.
 float row_q(const sh::AtmosphereParams& a, float d, bool ground, float x) {
@@ -156,7 +149,7 @@ TEST(SkyViewTable, TexelsAreFiniteAndNonNegativeInTheHardCases) {
                         // Light is linear sRGB and may lie outside its gamut (a deep-red sunset
                         // has a negative blue), but its XYZ -- that of a non-negative spectrum --
                         // never is negative.
-                        const glm::dvec3 xyz = srgb_to_xyz(glm::dvec3(v));
+                        const glm::dvec3 xyz = at::linear_srgb_to_xyz(glm::dvec3(v));
                         const double tol = 1e-5 * (std::abs(xyz.x) + std::abs(xyz.y) + std::abs(xyz.z)) + 1e-12;
                         for (int c = 0; c < 3; ++c) EXPECT_GE(xyz[c], -tol) << where;
                         if (p == 2 && y >= h / 2) {  // the sky half's transmittance: in [0, 1]

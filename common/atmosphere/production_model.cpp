@@ -178,14 +178,11 @@ const SkyViewTable& ProductionAtmosphere::sky_view_table(float d_m, float mu_s) 
     return *slot;
 }
 
-namespace {
-// Linear sRGB -> CIE XYZ: the exact inverse of xyz_to_linear_srgb (star_color.glsl).
 glm::dvec3 linear_srgb_to_xyz(const glm::dvec3& rgb) {
     static const glm::dmat3 inverse = glm::inverse(
         glm::transpose(glm::dmat3(3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570)));
     return inverse * rgb;
 }
-}  // namespace
 
 // A sky query the way the GPU's look-up pass answers it (shaders/atmosphere_lookup.frag): the
 // in-scatter from the table, plus the ground's albedo times the table's white-ground radiance.

@@ -31,6 +31,9 @@ inline const double kProductionWavelengths[3] = {shading::ATM_LAMBDA_R, shading:
 inline const double kProductionWavelengths2[3] = {shading::ATM_LAMBDA2_R, shading::ATM_LAMBDA2_G,
                                                   shading::ATM_LAMBDA2_B};
 
+// Linear sRGB -> CIE XYZ: the exact inverse of xyz_to_linear_srgb (star_color.glsl).
+glm::dvec3 linear_srgb_to_xyz(const glm::dvec3& rgb);
+
 // The uniform struct of the shared code, at the three sample wavelengths.
 shading::AtmosphereParams to_shader_params(const AtmosphereParameters& p);
 // The same at the wavelengths `lambdas_nm` (channels x, y, z), each one a node of the spectral
