@@ -184,8 +184,10 @@ SceneRenderer::SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& 
 SceneRenderer::~SceneRenderer() {
     if (impl_->atmosphere) {
         const AtmosphereStats s = atmosphere_stats();
-        spdlog::info("atmospheres: {} table sets built or loaded, {} passes run, {} skipped (outside the frustum)",
-                     s.tables_built_or_loaded, s.passes_run, s.passes_skipped);
+        spdlog::info(
+            "atmospheres: {} table sets built or loaded, {} passes run ({} marched), {} skipped (outside the "
+            "frustum), {} sky-view tables rendered",
+            s.tables_built_or_loaded, s.passes_run, s.passes_marched, s.passes_skipped, s.sky_view_renders);
     }
 }
 
@@ -195,6 +197,8 @@ AtmosphereStats SceneRenderer::atmosphere_stats() const {
     if (impl_->atmosphere) {
         s.passes_run = impl_->atmosphere->draws_run();
         s.passes_skipped = impl_->atmosphere->draws_skipped();
+        s.passes_marched = impl_->atmosphere->draws_marched();
+        s.sky_view_renders = impl_->atmosphere->sky_view_renders();
     }
     return s;
 }

@@ -24,6 +24,8 @@ struct AtmosphereStats {
     int tables_built_or_loaded = 0;  // at construction, one per body with an atmosphere
     long passes_run = 0;             // summed over frames
     long passes_skipped = 0;         // atmosphere entirely outside the frustum
+    long passes_marched = 0;         // of the passes run, those that marched every pixel
+    long sky_view_renders = 0;       // sky-view tables rendered (only when their inputs change)
 };
 
 // The wall time of one frame, per pass, when pass timing is on (SceneRenderer::set_pass_timing).

@@ -407,6 +407,24 @@ TEST(AtmosphereRender, OnlyWhatTheSceneNeedsIsModelled) {
     EXPECT_GT(max_component(lit), 0.0);
 }
 
+// The sky-view table is rendered when the camera's distance or the Sun's angle changes, not every
+// frame; the look-up level marches no pass unless an eclipse shadow falls on the planet.
+TEST(AtmosphereRender, SkyViewTableIsRenderedOnlyWhenItsInputsChange) {
+    context();
+    ClusterConfig cluster;
+    SceneRenderer r(cluster, channel(32, 24, FovDeg{30, 30, 20, 20}), make_scene("table_reuse", "sky-view"));
+    const Snapshot s = ground_snapshot(1.5, 0.0, 60.0, 0.0);
+    r.render(s);
+    r.render(s);
+    EXPECT_EQ(r.atmosphere_stats().passes_run, 2);
+    EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 1);
+    r.render(ground_snapshot(1.5, 0.0, 61.0, 0.0));  // the Sun moved
+    EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 2);
+    r.render(ground_snapshot(1.5, 20.0, 61.0, 0.0));  // the view turned: the table stays
+    EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 2);
+    EXPECT_EQ(r.atmosphere_stats().passes_marched, 0);
+}
+
 TEST(AtmosphereRender, FrustumCullingIsConservative) {
     // A channel whose right edge is straight ahead (right half-angle 0).
     const ChannelFrustum f(EulerDeg{}, FovDeg{45, 0, 20, 20}, 32, 32);
