@@ -517,7 +517,9 @@ TEST(AtmosphereMonteCarlo, AdaptiveCountStopsAtTheTargetOrTheCap) {
         EXPECT_TRUE(sky.ms_paths == 128 || sky.ms_paths == 256 || sky.ms_paths == 512 || sky.ms_paths == 1024 ||
                     sky.ms_paths == 2048)
             << sky.ms_paths;
-        if (sky.ms_paths < 2048) EXPECT_LE(sky.multiple_luminance_stderr, 0.01 * sky.luminance) << describe(q);
+        if (sky.ms_paths < 2048) {
+            EXPECT_LE(sky.multiple_luminance_stderr, 0.01 * sky.luminance) << describe(q);
+        }
         if (sky.ms_paths > 128) {  // the previous batch was not precise enough: it was not a free stop
             at::ReferenceSettings fixed = s;
             fixed.ms_max_paths = 0;

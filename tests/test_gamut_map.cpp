@@ -87,7 +87,7 @@ TEST(GamutMap, PngPixelsComeFromMappedNonNegativeValues) {
     for (size_t i = 0; i < colours.size(); ++i) {
         const glm::vec3 c = colours[i];
         const glm::vec3 mapped = display_color(c);
-        glm::vec3 lo, hi;
+        glm::vec3 lo(0.0f), hi(0.0f);
         for (int k = 0; k < 3; ++k) {
             const int code = px[i * 4 + k];
             EXPECT_EQ(code, std::lround(linear_to_srgb(mapped[k]) * 255.0f)) << "pixel " << i << " channel " << k;
@@ -97,8 +97,9 @@ TEST(GamutMap, PngPixelsComeFromMappedNonNegativeValues) {
         }
         const float y = luminance(c);
         const bool inside = std::min({c.x, c.y, c.z}) >= 0.0f && std::max({c.x, c.y, c.z}) <= 1.0f;
-        if (inside)
+        if (inside) {
             for (int k = 0; k < 3; ++k) EXPECT_EQ(mapped[k], c[k]);
+        }
         if (y > 0.0f && y < 1.0f) {  // representable: the PNG's luminance is the original's
             EXPECT_LE(luminance(lo), y) << "pixel " << i;
             EXPECT_GE(luminance(hi), y) << "pixel " << i;

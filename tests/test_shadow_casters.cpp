@@ -95,7 +95,9 @@ TEST(PenumbraReaches, AgreesWithSampledVisibleFraction) {
             const double a_s = std::asin(rs / glm::length(sun - p)), a_c = std::asin(rc / glm::length(caster - p));
             shadowed = 2.0 * std::asin(0.5 * glm::length(us - uc)) < a_s + a_c;
         }
-        if (shadowed) EXPECT_TRUE(test) << "trial " << trial << ": a shadowed receiver was dropped";
+        if (shadowed) {
+            EXPECT_TRUE(test) << "trial " << trial << ": a shadowed receiver was dropped";
+        }
         (test ? reached : missed) += 1;
     }
     EXPECT_GT(reached, 20);

@@ -47,7 +47,7 @@ ControlServer::ControlServer(const std::string& path) : path_(path) {
 
 void ControlServer::open_listener(const std::string& path) {
     if (path == "-") {
-        clients_.push_back({next_id_++, STDIN_FILENO, STDOUT_FILENO, true});
+        clients_.push_back({next_id_++, STDIN_FILENO, STDOUT_FILENO, true, {}});
     } else {
         const sockaddr_un addr = socket_address(path);
         struct stat st {};
@@ -170,7 +170,7 @@ void ControlServer::accept_client() {
         [[maybe_unused]] auto n = send(fd, msg, std::strlen(msg), MSG_NOSIGNAL | MSG_DONTWAIT);
         close(fd);
     } else {
-        clients_.push_back({next_id_++, fd, fd, false});
+        clients_.push_back({next_id_++, fd, fd, false, {}});
         spdlog::debug("control: client {} connected", clients_.back().id);
     }
 }
