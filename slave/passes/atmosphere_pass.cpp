@@ -118,7 +118,7 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
 }
 
 AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows)
-    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("fullscreen.vert", "atmosphere.frag") {}
+    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("sphere.vert", "atmosphere.frag") {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
     auto& p = lookup_programs_[variant & 7];
@@ -126,7 +126,7 @@ const GlProgram& AtmospherePass::lookup_program(int variant) {
         const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
                                     std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
                                     std::to_string((variant >> 2) & 1) + "\n";
-        p = std::make_unique<GlProgram>("fullscreen.vert", "atmosphere_lookup.frag", defines);
+        p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
 }
@@ -228,7 +228,9 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     glEnablei(GL_BLEND, 0);
     glBlendFuncSeparatei(0, GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
     vao_.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a fan),
+    // the viewport from inside; the scissor bounds both.
+    draw_cover(p, view, make_sphere_view(view, state.position_m, atm.top_radius_m()));
     glDisablei(GL_BLEND, 0);
     glDisable(GL_SCISSOR_TEST);
     gl::check("atmosphere pass (" + m.parameters().name + ")");

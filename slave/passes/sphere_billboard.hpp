@@ -1,11 +1,13 @@
 #pragma once
-// Geometry shared by the sun and body passes: a sphere seen from the camera, reduced to what the
-// GPU needs in float (directions and ratios computed in double) plus a covering billboard.
+// Geometry shared by the sun, body and atmosphere passes: a sphere seen from the camera, reduced to
+// what the GPU needs in float (directions and ratios computed in double) plus what covers it on
+// screen: a fan over its cap (passes/cap_cover.hpp), the viewport, or a billboard's corners.
 #include <glm/glm.hpp>
 
 #include <array>
 
 #include "gl/gl_program.hpp"
+#include "passes/cap_cover.hpp"
 #include "passes/channel_view.hpp"
 
 namespace cupola {
@@ -15,12 +17,16 @@ struct SphereView {
     double radius_m = 0.0;
     glm::dvec3 center_dir{0.0};  // unit, channel frame
     double sin_alpha = 0.0;      // R / d (>= 1: camera inside or on the sphere)
-    // Viewpoint-oriented billboard in "scaled space": the sphere scaled by kScaledDistance / d,
-    // so every body sits at the same distance and angular sizes are exact. Its normal points at
-    // the camera position (not along the view axis); a fallback axis keeps it valid at the zenith.
-    std::array<glm::vec3, 4> corners{};
-    bool fullscreen = false;  // camera too close for a billboard: cover the whole viewport
+    // What is drawn to cover it: the fan over its cap plus a margin of kCoverMargin_px (the
+    // sphere's own view), the viewport (the camera inside or on the sphere), or four corners of
+    // a billboard in the plane at kScaledDistance (the glare's squares, glare_pass.cpp).
+    enum class Cover { Corners, Viewport, Fan };
+    Cover cover = Cover::Corners;
+    std::array<glm::vec3, 4> corners{};              // Corners: in scaled space, channel frame
+    std::array<glm::vec3, kCapCoverVertices> fan{};  // Fan: unit directions, channel frame
+    bool fullscreen() const { return cover == Cover::Viewport; }
 
+    static constexpr double kCoverMargin_px = 2.0;
     static constexpr double kScaledDistance = 100.0;
     static constexpr double kNear = 0.5, kFar = 1.0e5;
 };
@@ -31,8 +37,12 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
 // camera-to-hit distance without cancellation (sphere_hit_distance in body.frag).
 glm::vec4 sphere_distances(const SphereView& sphere);
 
-// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_distances_m, u_corners, u_projection,
-// u_fullscreen and draws the billboard (a 4-vertex strip from gl_VertexID).
+// Sets u_tangents, u_size, u_center_dir, u_sin_alpha, u_distances_m of the sphere and draws its
+// cover (draw_cover).
 void draw_sphere(const GlProgram& program, const ChannelView& view, const SphereView& sphere);
+
+// Sets what shaders/sphere.vert reads (u_mode, u_corners or u_fan, u_projection) and draws the
+// cover: a 4-vertex strip (corners, viewport) or a 26-vertex fan, all from gl_VertexID.
+void draw_cover(const GlProgram& program, const ChannelView& view, const SphereView& cover);
 
 }  // namespace cupola
