@@ -12,7 +12,7 @@
 //   {"view", "size", "frames", "model", "renderer", "read_back", "frame_ms", "untimed_frame_ms",
 //    "trivial_ms", "ratio", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
-//    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg"}
+//    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end). With
 // --read-back every frame is also read back as RGBA32F (what a files sink needs) and that is
@@ -20,8 +20,11 @@
 // trivial pass: three samples per frame); the minima are given too, and the medians of the
 // process's CPU time (all threads) per frame and per trivial pass: on a software renderer on a
 // machine under load, that ratio is the one that does not depend on what else runs.
+// With --sun-step-deg the Sun rises by that much every frame (timed and untimed frames alike), as
+// in a show where time runs: the sky-view table is then re-rendered whenever the Sun's zenith
+// angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
-//                        [--images DIR]
+//                        [--images DIR] [--sun-step-deg D]
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -32,6 +35,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <memory>
@@ -184,6 +188,7 @@ double median(std::vector<double> v) {
 struct Options {
     int size = 1024, frames = 10, warm_up = 2, device = -1;
     bool read_back = false;
+    double sun_step_deg = 0.0;
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
     std::vector<std::string> views = {"day", "sunset", "orbit"};
@@ -241,13 +246,19 @@ double one_frame(SceneRenderer& r, const Snapshot& snap, bool read_back) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const Snapshot& snap, const Options& o) {
+// The snapshot of frame i (warm-up frames first): the view's, with the Sun raised by i times
+// --sun-step-deg (0: the same snapshot every frame).
+using FrameSnapshots = std::function<Snapshot(int)>;
+
+ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots& snaps, const Options& o) {
     for (int i = 0; i < o.warm_up; ++i) {
         trivial.run();
-        one_frame(r, snap, o.read_back);
+        one_frame(r, snaps(i), o.read_back);
     }
     ViewTimes t;
     for (int i = 0; i < o.frames; ++i) {
+        const Snapshot snap = snaps(o.warm_up + 2 * i);
+        const Snapshot next = snaps(o.warm_up + 2 * i + 1);
         for (int k = 0; k < kTrivialPerFrame; ++k) {
             const double cpu0 = process_cpu_ms();
             t.trivial.push_back(trivial.run());
@@ -265,7 +276,7 @@ ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const Snapshot& snap
             if (!t.passes.count(name)) t.order.push_back(name);
             t.passes[name].push_back(ms);
         }
-        t.untimed.push_back(one_frame(r, snap, o.read_back));
+        t.untimed.push_back(one_frame(r, next, o.read_back));
     }
     return t;
 }
@@ -305,6 +316,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["read_back_ms"] = median(t.read_back);
     j["camera_altitude_m"] = v.altitude_m;
     j["sun_zenith_deg"] = 90.0 - v.sun_el_deg;
+    j["sun_step_deg"] = o.sun_step_deg;
     return j;
 }
 
@@ -347,7 +359,13 @@ int run(const Options& o) {
     for (const ViewSpec* v : views) {
         const Snapshot snap = view_snapshot(*v, scene, cluster, exposure, glare.get());
         if (!o.images.empty()) write_view_image(o.images, *v, r, snap);
-        const ViewTimes t = time_view(r, trivial, snap, o);
+        const FrameSnapshots snaps = [&](int i) {
+            if (o.sun_step_deg == 0.0) return snap;
+            ViewSpec moved = *v;
+            moved.sun_el_deg += i * o.sun_step_deg;
+            return view_snapshot(moved, scene, cluster, exposure, glare.get());
+        };
+        const ViewTimes t = time_view(r, trivial, snaps, o);
         std::printf("%s\n", view_line(*v, t, o, model, renderer).dump().c_str());
         std::fflush(stdout);
     }
@@ -362,6 +380,9 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.size, "channel width and height in pixels")->check(CLI::Range(16, 8192));
     app.add_option("--frames", o.frames, "timed frames per view (medians reported)")->check(CLI::Range(1, 100000));
     app.add_option("--warm-up", o.warm_up, "untimed frames per view first")->check(CLI::Range(0, 1000));
+    app.add_option("--sun-step-deg", o.sun_step_deg,
+                   "raise the Sun by this much every frame (0: a static view; the sky-view table is re-rendered "
+                   "when the Sun's zenith angle crosses a step of its grid)");
     app.add_option("--model", o.model, "atmosphere quality level (default: the scene's)");
     app.add_option("--scene", o.scene_file, "scene file (bodies named sun, earth and moon)")->check(CLI::ExistingFile);
     app.add_flag("--read-back", o.read_back, "also read every frame back as RGBA32F (what a files sink needs)");

@@ -91,12 +91,16 @@ void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) 
 // inverse trigonometry per pixel. Without SKY_GEOMETRY nothing but this planet can be drawn in
 // front of the air's far end (the CPU checked that no other body meets the shell), so a ray that
 // meets the ground shows the surface.
-void shade(vec3 v, vec4 geo) {
+// The G-buffer is fetched only where it is read: on the ground, or with SKY_GEOMETRY everywhere
+// (llvmpipe skips a fetch that no pixel of a block takes).
+void shade(vec3 v, ivec2 px) {
     vec3 up = -u_center_dir;
     float r = max(u_d_m, u_atm.bottom_radius_m + 1.0);
     float mu = dot(v, up);
     bool ground = atm_ray_hits_ground(u_atm, r, mu);
     bool surface = ground;
+    vec4 geo = vec4(0.0, 0.0, 0.0, -1.0);
+    if (SKY_GEOMETRY != 0 || ground) geo = texelFetch(u_geometry, px, 0);
 #if SKY_GEOMETRY
     float g = geo.a;
     if (g >= 0.0) {  // this planet's surface (the body pass's own hit decides), or something in front
@@ -121,7 +125,8 @@ void shade(vec3 v, vec4 geo) {
 }
 #else
 // A camera outside: the ray enters the top sphere first.
-void shade(vec3 v, vec4 geo) {
+void shade(vec3 v, ivec2 px) {
+    vec4 geo = texelFetch(u_geometry, px, 0);  // a body in front of the air is seen from anywhere
     AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
     float g = geo.a;
     if (!st.valid || (g >= 0.0 && g <= st.offset_m)) {  // the ray misses the air, or a body in front of it
@@ -148,5 +153,5 @@ void shade(vec3 v, vec4 geo) {
 #endif
 
 void main() {
-    shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), texelFetch(u_geometry, ivec2(gl_FragCoord.xy), 0));
+    shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), ivec2(gl_FragCoord.xy));
 }

@@ -407,8 +407,8 @@ TEST(AtmosphereRender, OnlyWhatTheSceneNeedsIsModelled) {
     EXPECT_GT(max_component(lit), 0.0);
 }
 
-// The sky-view table is rendered when the camera's distance or the Sun's angle changes, not every
-// frame; the look-up level marches no pass unless an eclipse shadow falls on the planet.
+// The sky-view table is rendered when the camera's distance or the Sun's angle on the table's grid
+// changes, not every frame; the look-up level marches no pass unless an eclipse shadow falls on the planet.
 TEST(AtmosphereRender, SkyViewTableIsRenderedOnlyWhenItsInputsChange) {
     context();
     ClusterConfig cluster;
@@ -422,6 +422,12 @@ TEST(AtmosphereRender, SkyViewTableIsRenderedOnlyWhenItsInputsChange) {
     EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 2);
     r.render(ground_snapshot(1.5, 20.0, 61.0, 0.0));  // the view turned: the table stays
     EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 2);
+    // The Sun moved by less than half a step of the table's grid of zenith angles (0.001 degrees):
+    // the table stays; once it is nearer the next grid angle, the table is rendered again.
+    r.render(ground_snapshot(1.5, 20.0, 61.0003, 0.0));
+    EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 2);
+    r.render(ground_snapshot(1.5, 20.0, 61.0007, 0.0));
+    EXPECT_EQ(r.atmosphere_stats().sky_view_renders, 3);
     EXPECT_EQ(r.atmosphere_stats().passes_marched, 0);
 }
 

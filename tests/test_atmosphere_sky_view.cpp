@@ -5,9 +5,11 @@
 // reference dataset (data/atmosphere/earth_reference.csv), a regression guard on errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "atmosphere/production_accuracy.hpp"
 #include "atmosphere/production_model.hpp"
@@ -173,6 +175,44 @@ TEST(SkyViewTable, FromOrbitTheTopRowGrazesTheTopOfTheAtmosphere) {
     // The ground half's nadir, the Sun overhead, is lit; from 1 AU too.
     EXPECT_GT(t.parts[2].texels[0].y, 0.0f);
     EXPECT_GT(m.sky_view_table(1.495978707e11f, 1.0f).parts[2].texels[0].y, 0.0f);
+}
+
+// ---------------------------------------------------------------- the Sun's grid
+
+TEST(SkyViewTable, TheSunZenithGridHoldsATableForHalfAStepAndCostsLittleError) {
+    const double step = at::kSkyViewSunStep_deg;
+    const auto mu = [](double zenith_deg) { return std::cos(zenith_deg * M_PI / 180.0); };
+    for (double z : {0.0, 10.0, 61.0, 89.99, 90.0, 95.0, 100.0, 180.0}) {
+        const float grid = at::sky_view_table_sun_mu(mu(z));
+        EXPECT_NEAR(grid, static_cast<float>(mu(z)), 2e-7f) << z;  // a grid angle maps to itself
+        if (z > 0.0 && z < 180.0) {
+            EXPECT_EQ(at::sky_view_table_sun_mu(mu(z + 0.4 * step)), grid) << z;
+            EXPECT_EQ(at::sky_view_table_sun_mu(mu(z - 0.4 * step)), grid) << z;
+            EXPECT_NE(at::sky_view_table_sun_mu(mu(z + 0.6 * step)), grid) << z;
+        }
+    }
+    // What the grid costs: the table of a grid angle against the one of the Sun half a step away,
+    // where the sky changes fastest with the Sun (twilight); texels above 1e-3 of the brightest.
+    const at::ProductionAtmosphere& m = small_sky_model();
+    const float d = earth().bottom_radius_m + 2.0f;
+    for (double z : {60.0, 90.0, 95.0}) {
+        const at::SkyViewTable& a = m.sky_view_table(d, static_cast<float>(mu(z)));
+        const at::SkyViewTable& b = m.sky_view_table(d, static_cast<float>(mu(z + 0.5 * step)));
+        double brightest = 0.0;
+        for (const auto& t : a.parts[0].texels) brightest = std::max(brightest, static_cast<double>(t.y));
+        std::vector<double> change;
+        for (size_t i = 0; i < a.parts[0].texels.size(); ++i) {
+            const double ya = a.parts[0].texels[i].y + a.parts[1].texels[i].y;
+            const double yb = b.parts[0].texels[i].y + b.parts[1].texels[i].y;
+            if (ya > 1e-3 * brightest) change.push_back(std::abs(yb - ya) / ya);
+        }
+        std::sort(change.begin(), change.end());
+        const double p99 = change[change.size() * 99 / 100], worst = change.back();
+        // The largest change is where the Sun's own horizon crosses a texel (at 90 degrees: 20 %
+        // on one texel); what a viewer sees over the sky is the p99.
+        std::printf("sun grid: zenith %.0f, half a step away: p99 relative change %.4f, largest %.4f\n", z, p99, worst);
+        EXPECT_LT(p99, 0.005) << z;
+    }
 }
 
 // ---------------------------------------------------------------- against the reference

@@ -192,7 +192,8 @@ ProductionRadiance ProductionAtmosphere::sky_from_table(const AtmosphereRayStart
     out.in_atmosphere = st.valid;
     if (!st.valid) return out;
     const vec3 c_hat(0.0f, 0.0f, -1.0f);
-    const SkyViewTable& t = sky_view_table(d_m, -dot(sun, c_hat));
+    // The table the GPU draws with: the Sun's zenith angle on its grid (sky_view_table_sun_mu).
+    const SkyViewTable& t = sky_view_table(d_m, sky_view_table_sun_mu(-dot(sun, c_hat)));
     const bool ground = atm_ray_hits_ground(gpu_, st.r_m, st.mu);
     const vec2 uv = atm_sky_view_pixel_uv(gpu_, d_m, v, c_hat, sun, st, ground, t.size());
     vec3 rgb = atm_sky_view_inscatter(gpu_, sampler2D{&t.parts[0]}, sampler2D{&t.parts[1]}, uv, st.nu);

@@ -1,9 +1,18 @@
 #include "atmosphere/sky_view_table.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "atmosphere/production_model.hpp"
 
 namespace cupola::atmosphere {
 using namespace cupola::shading;
+
+float sky_view_table_sun_mu(double mu_s) {
+    const double step = glm::radians(kSkyViewSunStep_deg);
+    const double zenith = std::acos(std::clamp(mu_s, -1.0, 1.0));
+    return static_cast<float>(std::cos(std::round(zenith / step) * step));
+}
 
 SkyViewTable build_sky_view_table(const ProductionAtmosphere& m, float d_m, float mu_s) {
     const ProductionQuality& q = m.quality();

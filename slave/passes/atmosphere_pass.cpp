@@ -53,11 +53,13 @@ PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphe
 }
 
 // What the sky-view table depends on, from world positions in double (the same on every channel):
-// the camera's distance from the centre and the Sun's zenith cosine at the camera.
+// the camera's distance from the centre and the Sun's zenith cosine at the camera, on the table's
+// grid of Sun zenith angles (atmosphere::sky_view_table_sun_mu).
 glm::vec2 sky_view_inputs(const ChannelView& view, const BodyState& state, const glm::dvec3& sun_dir_world) {
     const glm::dvec3 up = view.camera_position_m - state.position_m;
     const double d = glm::length(up);
-    return glm::vec2(static_cast<float>(d), static_cast<float>(d > 0.0 ? glm::dot(up / d, sun_dir_world) : 1.0));
+    const double mu_s = d > 0.0 ? glm::dot(up / d, sun_dir_world) : 1.0;
+    return glm::vec2(static_cast<float>(d), atmosphere::sky_view_table_sun_mu(mu_s));
 }
 
 // Does a body other than the planet meet the sphere of its atmosphere's top (channel frame, double)?
