@@ -38,6 +38,8 @@ uniform vec3 u_sun_perp;     // atm_sky_view_sun_perp(-u_center_dir, u_sun)
 uniform EclipseCasters u_ecl;  // illustrative mode only (or none)
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
+uniform sampler2D u_halo;  // SKY_HALO: the glare's halo target (slave/passes/glare_halo_pass.hpp)
+uniform vec4 u_halo_map;   // its texture coordinate = gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw
 
 layout(location = 0, index = 0) out vec4 out_add;
 layout(location = 0, index = 1) out vec4 out_factor;
@@ -64,6 +66,7 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
 //   SKY_OUTSIDE       the camera is above the top of the atmosphere
 //   SKY_GEOMETRY      another body is inside the shell: pixels showing it march up to it
 //   SKY_ILLUSTRATIVE  illustrative eclipse shadows tint the surface
+//   SKY_HALO          the glare's halo is added here, not by a full-screen draw of its own
 
 // The pixel's light from the table at uv: through the air (sky) or on the ground (relit surface).
 void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
@@ -154,4 +157,9 @@ void shade(vec3 v, ivec2 px) {
 
 void main() {
     shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), ivec2(gl_FragCoord.xy));
+#if SKY_HALO
+    // The glare's halo, upsampled as glare_upsample.frag does it, added last (nothing after this
+    // draw multiplies the colour): the same sum as the glare pass's own additive draw.
+    out_add.rgb += textureLod(u_halo, gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw, 0.0).rgb;
+#endif
 }

@@ -82,13 +82,14 @@ struct SceneRenderer::Impl {
         // occlude (the atmosphere).
         if (scene.glare.enabled)
             glare_probe = &add(std::make_unique<GlareProbe>(cluster, ch, scene, painter.bodies(), shadows));
-        // The atmospheres, one draw per body in view, far to near: colour and G-buffer in, colour out.
-        if (!atm.empty()) atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows));
-        // The glare's halo at reduced resolution into its own target, then the glare, last, from the
-        // cluster-wide visibility: colour, additive.
+        // The glare's halo at reduced resolution into its own target.
         GlareHaloPass* halo = nullptr;
         if (scene.glare.enabled && scene.glare.halo_downsample > 1)
             halo = &add(std::make_unique<GlareHaloPass>(scene, *glare_probe));
+        // The atmospheres, one draw per body in view, far to near: colour and G-buffer in, colour
+        // out; the nearest, when it covers the channel, adds the glare's halo in the same draw.
+        if (!atm.empty()) atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo));
+        // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
         // above, which are then skipped (render()); the passes after it (the output) draw it.
@@ -199,6 +200,7 @@ AtmosphereStats SceneRenderer::atmosphere_stats() const {
         s.passes_skipped = impl_->atmosphere->draws_skipped();
         s.passes_marched = impl_->atmosphere->draws_marched();
         s.sky_view_renders = impl_->atmosphere->sky_view_renders();
+        s.halos_added = impl_->atmosphere->halos_added();
     }
     return s;
 }
@@ -239,6 +241,10 @@ Image SceneRenderer::render(const Snapshot& snap) {
 }
 
 void SceneRenderer::set_pass_timing(bool on) { impl_->timing = on; }
+
+void SceneRenderer::set_halo_with_atmosphere(bool on) {
+    if (impl_->atmosphere) impl_->atmosphere->set_add_halo(on);
+}
 
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 

@@ -26,6 +26,7 @@ struct AtmosphereStats {
     long passes_skipped = 0;         // atmosphere entirely outside the frustum
     long passes_marched = 0;         // of the passes run, those that marched every pixel
     long sky_view_renders = 0;       // sky-view tables rendered (only when their inputs change)
+    long halos_added = 0;            // draws that added the glare's halo (then no draw of its own)
 };
 
 // The wall time of one frame, per pass, when pass timing is on (SceneRenderer::set_pass_timing).
@@ -61,6 +62,10 @@ public:
     // Pass timing, off by default (then draw() waits for the GPU only once, at its end): when
     // on, draw() also waits after every pass and records the wall times of the frame.
     void set_pass_timing(bool on);
+    // Whether the nearest atmosphere's draw may add the glare's halo when it covers the channel
+    // (on by default); off, the glare pass always upsamples the halo on its own (the two must
+    // give the same image: tests/test_glare_halo_composite.cpp).
+    void set_halo_with_atmosphere(bool on);
     // The last frame's timings while pass timing is on (empty before the first timed frame).
     const FrameTimings& last_frame_timings() const;
 

@@ -259,7 +259,7 @@ TEST(RenderPasses, ThePipelineRunsInItsDocumentedOrder) {
     context();
     const View with_glare(true);
     EXPECT_EQ(SceneRenderer(with_glare.cluster, with_glare.channel, with_glare.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "atmosphere", "glare halo", "glare",
+              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "glare halo", "atmosphere", "glare",
                                         "alignment pattern"}));
     View airless;
     airless.scene.bodies[kEarth].atmosphere.present = false;

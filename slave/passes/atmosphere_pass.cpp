@@ -33,7 +33,8 @@ atmosphere::ProductionAtmosphere make_model(const BodyConfig& body) {
     return atmosphere::ProductionAtmosphere(c.parameters, atmosphere::production_quality(c.model));
 }
 
-enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7 };  // tables: 2..5, sky view: 7..9
+// tables: 2..5, sky view: 7..9
+enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7, kHalo = 10 };
 
 // Direction from the planet's centre to the Sun (as the body pass lights it), and the Sun's
 // irradiance there in scene units over that of the model's physical spectrum; in double.
@@ -119,15 +120,19 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
     return false;
 }
 
-AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows)
-    : atmospheres_(std::move(atmospheres)), shadows_(shadows), program_("sphere.vert", "atmosphere.frag") {}
+AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo)
+    : atmospheres_(std::move(atmospheres)),
+      shadows_(shadows),
+      program_("sphere.vert", "atmosphere.frag"),
+      halo_(halo) {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
-    auto& p = lookup_programs_[variant & 7];
+    auto& p = lookup_programs_[variant & 15];
     if (!p) {
         const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
                                     std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
-                                    std::to_string((variant >> 2) & 1) + "\n";
+                                    std::to_string((variant >> 2) & 1) + "\n#define SKY_HALO " +
+                                    std::to_string((variant >> 3) & 1) + "\n";
         p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
@@ -161,15 +166,24 @@ int AtmospherePass::prepare(const FrameContext& frame) {
     return static_cast<int>(layers_.size());
 }
 
+const GlareHaloPass* AtmospherePass::halo_for(int step) const {
+    if (!halo_ || !add_halo_ || step + 1 != static_cast<int>(layers_.size()) || !halo_->has_halo()) return nullptr;
+    const Layer& l = layers_.back();
+    const bool covers = make_sphere_view(frame_->view, l.body->state->position_m, l.atmosphere->top_radius_m())
+                            .fullscreen();  // the camera inside the shell: every pixel is drawn
+    return covers ? halo_ : nullptr;
+}
+
 void AtmospherePass::draw(const PassInputs& in, int step) {
     const Layer& l = layers_.at(static_cast<size_t>(step));
     const FrameContext& f = *frame_;
     draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.geometry, shadows_,
-         f.casters_of(l.body->body->id), l.geometry_in_air);
+         f.casters_of(l.body->body->id), l.geometry_in_air, halo_for(step));
 }
 
 const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::vec2& table_in,
-                                                const shading::EclipseCasters& casters, bool geometry_in_air) {
+                                                const shading::EclipseCasters& casters, bool geometry_in_air,
+                                                const GlareHaloPass*& halo) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const bool shadowed = casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
     GpuSkyViewTable* table = atm.sky_view();
@@ -179,8 +193,13 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         const bool outside = shading::atm_camera_outside(a, table_in.x);
         const bool illustrative = casters.count > 0;
         const GlProgram& lookup =
-            lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0));
+            lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0) | (halo ? 8 : 0));
         lookup.use();
+        if (halo) {
+            halo->texture().bind(kHalo);
+            lookup.set("u_halo", static_cast<int>(kHalo));
+            lookup.set("u_halo_map", halo->grid().map);
+        }
         table->bind(kSkyView);
         lookup.set("u_sky_phased", static_cast<int>(kSkyView));
         lookup.set("u_sky_mie", static_cast<int>(kSkyView + 1));
@@ -191,6 +210,7 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         return lookup;
     }
     ++marched_;
+    halo = nullptr;  // the march adds none: the glare pass upsamples it
     const atmosphere::ProductionQuality& q = m.quality();
     program_.use();
     program_.set("u_fit.k1_rad", m.analytic_fit().k1_rad);
@@ -203,12 +223,12 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
 
 void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const BodyState& state, const SphereView& sphere,
                           const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-                          const shading::EclipseCasters& casters, bool geometry_in_air) {
+                          const shading::EclipseCasters& casters, bool geometry_in_air, const GlareHaloPass* halo) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const PlanetSun ps = planet_sun(state, sun, m);
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
-    const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air);
+    const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, halo);
     p.set("u_tangents", view.tangents());
     p.set("u_size", view.size());
     p.set("u_center_dir", glm::vec3(sphere.center_dir));
@@ -235,6 +255,10 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     draw_cover(p, view, make_sphere_view(view, state.position_m, atm.top_radius_m()));
     glDisablei(GL_BLEND, 0);
     glDisable(GL_SCISSOR_TEST);
+    if (halo) {
+        halo->mark_composited();
+        ++halos_added_;
+    }
     gl::check("atmosphere pass (" + m.parameters().name + ")");
 }
 

@@ -28,6 +28,7 @@
 #include "gl/gl_texture.hpp"
 #include "passes/body_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
+#include "passes/glare_halo_pass.hpp"
 #include "passes/render_pass.hpp"
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
@@ -68,8 +69,9 @@ class AtmospherePass : public RenderPass {
 public:
     using Atmospheres = std::map<uint16_t, std::unique_ptr<GpuAtmosphere>>;  // by body id
 
-    // atmospheres: every body's that has one (not empty).
-    AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows);
+    // atmospheres: every body's that has one (not empty). halo: the glare's halo pass, when the
+    // scene has one; the nearest atmosphere's draw adds its halo when it covers the whole channel.
+    AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo = nullptr);
 
     // In the pass list: one draw per body with an atmosphere whose top-of-atmosphere sphere can
     // touch the frustum, far to near, each over everything drawn so far: reads the G-buffer,
@@ -80,17 +82,20 @@ public:
     void draw(const PassInputs& in, int step) override;
 
     const Atmospheres& atmospheres() const { return atmospheres_; }
-    long draws_run() const { return run_; }          // summed over frames
-    long draws_skipped() const { return skipped_; }  // atmosphere entirely outside the frustum
-    long draws_marched() const { return marched_; }  // drawn by the per-pixel march
-    long sky_view_renders() const;                   // sky-view tables rendered, all bodies
+    long draws_run() const { return run_; }            // summed over frames
+    long draws_skipped() const { return skipped_; }    // atmosphere entirely outside the frustum
+    long draws_marched() const { return marched_; }    // drawn by the per-pixel march
+    long sky_view_renders() const;                     // sky-view tables rendered, all bodies
+    long halos_added() const { return halos_added_; }  // draws that added the glare's halo
+    void set_add_halo(bool on) { add_halo_ = on; }     // SceneRenderer::set_halo_with_atmosphere
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.
-    // geometry_in_air: another body meets the shell (its pixels are marched).
+    // geometry_in_air: another body meets the shell (its pixels are marched). halo: a glare halo
+    // to add in the same draw (the look-up only; then it is marked composited), or null.
     void draw(const ChannelView& view, GpuAtmosphere& atmosphere, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-              const shading::EclipseCasters& casters, bool geometry_in_air = true);
+              const shading::EclipseCasters& casters, bool geometry_in_air = true, const GlareHaloPass* halo = nullptr);
 
 private:
     struct Layer {
@@ -100,18 +105,25 @@ private:
     };
     // The program for this draw: the look-up, or the march (set up with its own uniforms).
     // table_in: the sky-view table's (camera distance, Sun zenith cosine).
+    // halo: add the glare halo if the look-up is chosen (then set to the halo, else null).
     const GlProgram& choose_program(GpuAtmosphere& atmosphere, const glm::vec2& table_in,
-                                    const shading::EclipseCasters& casters, bool geometry_in_air);
-    // The look-up program of a variant (bits: outside, geometry in the air, illustrative), compiled on first use.
+                                    const shading::EclipseCasters& casters, bool geometry_in_air,
+                                    const GlareHaloPass*& halo);
+    // The look-up program of a variant (bits: outside, geometry in the air, illustrative, glare
+    // halo added), compiled on first use.
     const GlProgram& lookup_program(int variant);
+    // The glare halo the draw of layer `step` adds: the nearest layer's, when it covers the channel.
+    const GlareHaloPass* halo_for(int step) const;
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
     GlProgram program_;
-    std::unique_ptr<GlProgram> lookup_programs_[8];
+    std::unique_ptr<GlProgram> lookup_programs_[16];
+    const GlareHaloPass* halo_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws
-    long run_ = 0, skipped_ = 0, marched_ = 0;
+    long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0;
+    bool add_halo_ = true;
 };
 
 }  // namespace cupola

@@ -20,8 +20,14 @@ void GlareHaloPass::make_target(const ChannelFrustum& frustum) {
     core_rad_ = glm::vec2(inner, 2.0 * inner);
 }
 
+bool GlareHaloPass::has_halo() const {
+    return std::any_of(placements_.begin(), placements_.end(),
+                       [&](const GlarePlacement& g) { return g.extent_rad > core_rad_.x; });
+}
+
 int GlareHaloPass::prepare(const FrameContext& frame) {
     frame_ = &frame;
+    composited_ = false;
     if (!target_) make_target(*frame.view.frustum);
     placements_ = place_glare(scene_->glare, frame.view, *frame.snap, probe_);
     return placements_.empty() ? 0 : 1;

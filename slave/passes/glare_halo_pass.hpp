@@ -1,6 +1,6 @@
 #pragma once
-// The glare's wide, smooth halo at reduced resolution, before the glare pass (glare_pass.hpp)
-// in the pass list. The glare PSF (Spencer et al. 1995, shared/glare_psf.glsl) is split three
+// The glare's wide, smooth halo at reduced resolution, before the atmosphere and the glare pass
+// (glare_pass.hpp) in the pass list. The glare PSF (Spencer et al. 1995, shared/glare_psf.glsl) is split three
 // ways, which sum to it exactly:
 //   - the core: the part without azimuth (glare_psf_smooth) near the source, where it is steep,
 //     fading out (glare_core_share) between core_rad().x and .y (at least kCoreTexels halo
@@ -48,6 +48,14 @@ public:
     const GlTexture& texture() const { return *texture_; }
     // The core's inner and outer angle: the halo has none of the PSF inside the inner one.
     glm::vec2 core_rad() const { return core_rad_; }
+    // Whether this frame's target holds any halo (some source reaches past its core).
+    bool has_halo() const;
+    // The halo is added to the colour by whichever pass comes first after it: a pass that
+    // covers the whole channel anyway (the atmosphere seen from inside, atmosphere_pass.cpp) adds
+    // it in the same draw and marks it; otherwise the glare pass upsamples it on its own. Reset
+    // by prepare() every frame.
+    void mark_composited() const { composited_ = true; }
+    bool composited() const { return composited_; }
 
 private:
     void make_target(const ChannelFrustum& frustum);
@@ -62,6 +70,7 @@ private:
     std::unique_ptr<GlFramebuffer> target_;
     glm::vec2 core_rad_{0.0f};
     std::vector<GlarePlacement> placements_;
+    mutable bool composited_ = false;
 };
 
 }  // namespace cupola

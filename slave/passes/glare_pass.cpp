@@ -69,9 +69,7 @@ void GlarePass::draw_full(const GlarePlacement& g) const {
 }
 
 void GlarePass::draw_halo() const {
-    const bool any = std::any_of(placements_.begin(), placements_.end(),
-                                 [&](const GlarePlacement& g) { return g.extent_rad > halo_->core_rad().x; });
-    if (!any) return;
+    if (!halo_->has_halo() || halo_->composited()) return;  // nothing to add, or added with the atmosphere
     upsample_.use();
     halo_->texture().bind(0);
     upsample_.set("u_halo", 0);

@@ -175,7 +175,8 @@ void GlareProbe::draw_occluders(const Snapshot& snap, const GlareSource& src, co
         if (sphere.distance_m - b.radius_m >= source_near_m) continue;  // behind the source
         // Outside the probe's cone altogether?
         const double off = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(sphere.center_dir - glm::dvec3(0, 0, -1))));
-        if (!sphere.fullscreen() && off > std::atan(probe.t * 1.5) + std::asin(std::min(sphere.sin_alpha, 1.0))) continue;
+        if (!sphere.fullscreen() && off > std::atan(probe.t * 1.5) + std::asin(std::min(sphere.sin_alpha, 1.0)))
+            continue;
         bodies.draw(probe.view, b, st, sphere, light, shadows, no_casters);
     }
 }
