@@ -1,7 +1,10 @@
 #version 450 core
 // Star sprites: one GL point per catalogue star, sized from the local pixel scale so that it
-// covers 4 sigma of the angular PSF (at least 3 px). The fragment shader integrates the PSF over
-// each pixel it covers.
+// covers the PSF out to where the star can still change a display pixel: the angle r at which
+// peak * exposure * exp(-r^2 / (2 sigma^2)) falls to u_min_display (the visibility criterion of
+// slave/passes/star_pass.hpp), so a faint star's sprite is small and a bright one's large. The
+// reach is an angle from cluster-wide values (flux, sigma, the snapshot's exposure): every
+// channel covers the same directions. The fragment shader integrates the PSF over each pixel.
 layout(location = 0) in vec3 a_dir;   // unit direction, world frame
 layout(location = 1) in float a_flux; // zero_mag_flux * 10^(-0.4 V), scene units x sr
 layout(location = 2) in float a_bv;   // B-V colour index
@@ -10,6 +13,9 @@ uniform mat3 u_world_to_channel;
 uniform mat4 u_projection;      // the channel frustum widened by a guard band
 uniform vec2 u_px_per_tangent;  // pixels per unit of tangent-plane coordinate (x, y)
 uniform float u_sigma_rad;      // PSF sigma, radians
+uniform float u_exposure;       // the snapshot's; <= 0: u_fixed_reach_sigma for every star
+uniform float u_min_display;    // the display value below which a pixel cannot change
+uniform float u_fixed_reach_sigma;
 
 flat out vec3 v_color;    // flux times the unit-luminance B-V colour
 flat out vec2 v_t;        // tangent-plane point of the star
@@ -26,5 +32,11 @@ void main() {
     v_sigma_t = star_tangent_sigma(v_t, u_sigma_rad);
     // Pixels per radian: the tangent plane stretches angles by up to 1 + tan^2 off axis.
     float px_per_rad = max(u_px_per_tangent.x, u_px_per_tangent.y) * (1.0 + tx * tx + ty * ty);
-    gl_PointSize = min(max(3.0, 2.0 * ceil(4.0 * u_sigma_rad * px_per_rad + 1.0) + 1.0), 255.0);
+    float reach_sigma = u_fixed_reach_sigma;
+    if (u_exposure > 0.0) {
+        float peak = max(v_color.r, max(v_color.g, v_color.b)) / (2.0 * CUPOLA_PI * u_sigma_rad * u_sigma_rad);
+        reach_sigma = sqrt(2.0 * log(max(peak * u_exposure / u_min_display, 1.0)));
+    }
+    // Every pixel centre within the reach of the star's point, plus one pixel for the pixel's extent.
+    gl_PointSize = clamp(ceil(2.0 * reach_sigma * u_sigma_rad * px_per_rad) + 2.0, 1.0, 255.0);
 }

@@ -30,6 +30,7 @@ double StarPass::visible_magnitude(double exposure) const {
 
 int StarPass::prepare(const FrameContext& frame) {
     view_ = &frame.view;
+    exposure_ = frame.snap->settings.exposure;
     magnitude_limit_ =
         std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
                   visible_magnitude(frame.snap->settings.exposure)});
@@ -37,9 +38,9 @@ int StarPass::prepare(const FrameContext& frame) {
     return any ? 1 : 0;
 }
 
-void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_); }
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_); }
 
-void StarPass::draw(const ChannelView& view, double magnitude_limit) {
+void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure) {
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
         magnitudes_.begin());
@@ -63,6 +64,9 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit) {
     program_.set("u_projection", glm::mat4(wide.projection(0.1, 10.0)));
     program_.set("u_px_per_tangent", glm::vec2(ppt_x, ppt_y));
     program_.set("u_sigma_rad", static_cast<float>(sigma));
+    program_.set("u_exposure", static_cast<float>(exposure));
+    program_.set("u_min_display", static_cast<float>(kMinDisplay));
+    program_.set("u_fixed_reach_sigma", static_cast<float>(kFixedReachSigma));
     program_.set("u_tangents", view.tangents());
     program_.set("u_size", view.size());
     glEnable(GL_PROGRAM_POINT_SIZE);

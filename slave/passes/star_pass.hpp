@@ -17,13 +17,17 @@ class StarPass : public RenderPass {
 public:
     // stars: any order (sorted here by magnitude so a limit is a prefix).
     StarPass(const StarFieldConfig& config, std::vector<Star> stars);
-    // Adds the stars brighter than magnitude_limit into the bound framebuffer.
-    void draw(const ChannelView& view, double magnitude_limit);
+    // Adds the stars brighter than magnitude_limit into the bound framebuffer, each over the
+    // pixels where its PSF can reach kMinDisplay at this exposure (stars.vert; exposure <= 0:
+    // the PSF out to kFixedReachSigma for every star).
+    void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0);
+    static constexpr double kFixedReachSigma = 4.0;
 
     // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
     // brighter than the scene's and the snapshot's magnitude limits and than visible_magnitude()
     // at the snapshot's exposure (cluster-wide, so every channel draws the same stars). Skipped
-    // (0 draws) when no star is left: by day.
+    // (0 draws) when no star is left. In a bright sky the stars are still drawn where the
+    // exposure can show them: this criterion does not see the sky behind them.
     std::string name() const override { return "stars"; }
     PassIo io() const override { return {.writes_color = true}; }
     int prepare(const FrameContext& frame) override;
@@ -41,6 +45,7 @@ private:
     GlVertexBuffer vertices_;
     const ChannelView* view_ = nullptr;
     double magnitude_limit_ = 0.0;
+    double exposure_ = 0.0;
 };
 
 }  // namespace cupola
