@@ -117,13 +117,14 @@ void build_ms_table(Texture2DData& ms, const shading::AtmosphereParams& a, const
         const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
         return atm_compute_ms(a, trans, trans_size, rs.x, rs.y, q.ms_directions, q.ms_steps, q.ms_orders == 0);
     });
+    const int order_directions = q.ms_order_directions > 0 ? q.ms_order_directions : q.ms_directions;
     Texture2DData order = ms;
     for (int n = 3; n <= q.ms_orders; ++n) {
         Texture2DData next = make_table(ms.width, ms.height);
         const sampler2D prev{&order};
         fill_table(next, threads, bar, [&](vec2 uv) {
             const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
-            return atm_compute_ms_next_order(a, prev, ms_size, rs.x, rs.y, q.ms_directions, q.ms_steps);
+            return atm_compute_ms_next_order(a, prev, ms_size, rs.x, rs.y, order_directions, q.ms_steps);
         });
         for (size_t i = 0; i < next.texels.size(); ++i) ms.texels[i] += glm::vec4(glm::vec3(next.texels[i]), 0.0f);
         order = std::move(next);
