@@ -61,7 +61,11 @@ ProductionQuality production_quality(const std::string& name) {
         q.ms_orders = 4;
         return q;
     }
-    if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+    if (name == "medium") {
+        ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+        q.ms_rayleigh_anisotropy = true;
+        return q;
+    }
     if (name == "sky-view" || name == "sky-view-rgb") {  // medium's tables, looked up through a sky-view table
         // The second order from 128 directions (64 miss the thin lit ring the shadowed air sees in
         // twilight), the smoother higher orders from 32.
