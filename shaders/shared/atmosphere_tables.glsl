@@ -6,7 +6,8 @@
 //  multiple_scattering  Psi_ms(r, mu_s) (after Hillaire 2020): the in-scattered radiance of orders
 //                 >= 2 per unit scattering coefficient, isotropic: the sum of J_2 .. J_N, each
 //                 order computed from the previous one's table (ms_orders), or J_2 / (1 - f_ms)
-//                 (Hillaire's geometric tail) when ms_orders is 0.
+//                 (Hillaire's geometric tail) when ms_orders is 0. Alpha: the Rayleigh anisotropy
+//                 ratio of the arriving light (atm_ms_rayleigh_factor), or 0.
 //  irradiance     E_sky(r, mu_s): sky irradiance on a horizontal surface (orders >= 1 from the
 //                 sky, not the direct Sun), for the ground's sky light.
 
@@ -35,7 +36,8 @@ float atm_legendre_p2(float c) {
 // scattering is not isotropic, and the Rayleigh phase of the next scattering weights it. With the
 // arriving radiance taken symmetric about the Sun direction, the integral of L times the Rayleigh
 // phase is Psi_ms (1 + k P2(nu) / 2), k = the P2(cos to the Sun) moment of L over its mean (the
-// addition theorem of spherical harmonics). Mie's part stays isotropic (Hillaire 2020, section 5.1).
+// addition theorem of spherical harmonics). Hillaire 2020 (section 5.1) takes the whole term
+// isotropic; Mie's part stays so. k is 0 in tables built without ms_rayleigh_anisotropy.
 float atm_ms_rayleigh_factor(float k, float nu) {
     return max(1.0 + 0.5 * k * atm_legendre_p2(nu), 0.0);
 }
