@@ -233,14 +233,17 @@ TEST(SkyViewVsReference, TheSkyLevelKeepsItsErrorsAgainstTheStoredReference) {
     std::printf("sky: overall median %.4f p99 %.4f duv %.4f; day median %.4f\n", r.overall.median, r.overall.p99,
                 r.overall.chroma_median, rd.overall.median);
     for (const auto& g : r.groups) EXPECT_EQ(g.nonzero_where_reference_is_zero, 0) << g.camera << g.sun_zenith_deg;
-    // The targets of the default level: 1 % by day, 2 % median and 10 % p99 overall, u'v' 0.005,
-    // twilight included. Reached: 0.94 % by day, 1.43 % median, u'v' 0.0040. NOT reached: the p99,
-    // 14.9 % since the twilight rows count (the terminator seen from orbit and the ground at a sun
-    // zenith of 95 degrees; docs/atmosphere-speed-vs-error.md): guarded where it is, not at 10 %.
+    // The targets of the default level, twilight included: 1 % by day, 2 % median and 10 % p99
+    // overall, u'v' 0.005. Reached: 0.90 % by day, 1.43 % median, 6.5 % p99, u'v' 0.0039 (before
+    // the 128-direction second order and the Rayleigh anisotropy of the multiple scattering,
+    // atm_ms_rayleigh_factor: 0.93 %, 1.43 %, 14.9 %, 0.0040; the twilight rows -- the terminator
+    // seen from orbit, the ground at a sun zenith of 95 degrees -- made the p99). Left out for
+    // reference noise (kMaxReferenceNoise): 642 of 10240 rows, all at sun zenith 88 and 95 degrees
+    // (docs/atmosphere-speed-vs-error.md).
     EXPECT_LE(rd.overall.median, 0.010);
-    EXPECT_LE(r.overall.median, 0.015);
-    EXPECT_LE(r.overall.p99, 0.155);
-    EXPECT_LE(r.overall.chroma_median, 0.0045);
+    EXPECT_LE(r.overall.median, 0.020);
+    EXPECT_LE(r.overall.p99, 0.10);
+    EXPECT_LE(r.overall.chroma_median, 0.005);
     // No set drifts: by day every group's bias stays within what the six-wavelength table reaches.
     for (const auto& g : r.groups)
         if (g.sun_zenith_deg <= 80.0) {

@@ -7,9 +7,10 @@ namespace cupola::atmosphere {
 std::string ProductionQuality::table_key() const {
     return std::string(analytic ? "analytic" : "lut") + ";T" + std::to_string(transmittance_width) + "x" +
            std::to_string(transmittance_height) + "s" + std::to_string(transmittance_steps) + ";M" +
-           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) + "o" +
-           std::to_string(ms_orders) + ";E" + std::to_string(irradiance_width) + "x" +
-           std::to_string(irradiance_height) + "d" + std::to_string(irradiance_directions) + "s" +
+           std::to_string(ms_size) + "d" + std::to_string(ms_directions) + "s" + std::to_string(ms_steps) +
+           (ms_order_directions > 0 ? "n" + std::to_string(ms_order_directions) : "") + "o" +
+           std::to_string(ms_orders) + (ms_rayleigh_anisotropy ? "a" : "") + ";E" + std::to_string(irradiance_width) +
+           "x" + std::to_string(irradiance_height) + "d" + std::to_string(irradiance_directions) + "s" +
            std::to_string(irradiance_samples) + (multiple_scattering ? ";ms" : ";single") +
            (sky_view && sky_view_wavelengths == 6 ? ";w6" : "");
 }
@@ -60,9 +61,17 @@ ProductionQuality production_quality(const std::string& name) {
         q.ms_orders = 4;
         return q;
     }
-    if (name == "medium") return level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+    if (name == "medium") {
+        ProductionQuality q = level(name, 256, 64, 40, 32, 64, 20, 64, 16, 64, 16, 16);
+        q.ms_rayleigh_anisotropy = true;
+        return q;
+    }
     if (name == "sky-view" || name == "sky-view-rgb") {  // medium's tables, looked up through a sky-view table
-        ProductionQuality q = level(name, 256, 64, 40, 64, 64, 20, 128, 32, 64, 16, 16);
+        // The second order from 128 directions (64 miss the thin lit ring the shadowed air sees in
+        // twilight), the smoother higher orders from 32.
+        ProductionQuality q = level(name, 256, 64, 40, 64, 128, 12, 128, 32, 64, 16, 16);
+        q.ms_order_directions = 32;
+        q.ms_rayleigh_anisotropy = true;
         q.sky_view = true;
         q.sky_view_wavelengths = name == "sky-view" ? 6 : 3;
         return q;

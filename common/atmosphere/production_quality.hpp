@@ -13,7 +13,11 @@ struct ProductionQuality {
     bool multiple_scattering = true;
     int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
     int ms_size = 32, ms_directions = 64, ms_steps = 20;
-    int ms_orders = 6;  // highest order iterated explicitly; 0: Hillaire's J_2 / (1 - f_ms) instead
+    int ms_order_directions = 0;  // directions of the orders >= 3 (atm_compute_ms_next_order); 0: ms_directions
+    int ms_orders = 6;            // highest order iterated explicitly; 0: Hillaire's J_2 / (1 - f_ms) instead
+    // The Rayleigh part of the multiple scattering weighted by the anisotropy of the light arriving
+    // from the first scattering (atm_ms_rayleigh_factor), instead of isotropic.
+    bool ms_rayleigh_anisotropy = false;
     int irradiance_width = 64, irradiance_height = 16, irradiance_directions = 64, irradiance_samples = 16;
     int view_samples = 16;  // per-pixel march steps
     // The sky as look-ups (atmosphere_sky_view.glsl): a sky-view table per frame instead of the

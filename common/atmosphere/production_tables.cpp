@@ -33,13 +33,13 @@ Texture2DData make_table(int w, int h) {
 }
 
 // Fills every texel of t with fn(u, v) (texel-centre coordinates), rows spread over threads.
-void fill_table(Texture2DData& t, int threads, ProgressBar& bar, const std::function<glm::vec3(glm::vec2)>& fn) {
+void fill_table4(Texture2DData& t, int threads, ProgressBar& bar, const std::function<glm::vec4(glm::vec2)>& fn) {
     std::atomic<int> next_row{0};
     auto worker = [&] {
         for (int y = next_row++; y < t.height; y = next_row++) {
             for (int x = 0; x < t.width; ++x) {
                 const glm::vec2 uv((x + 0.5f) / t.width, (y + 0.5f) / t.height);
-                t.texels[static_cast<size_t>(y) * t.width + x] = glm::vec4(fn(uv), 1.0f);
+                t.texels[static_cast<size_t>(y) * t.width + x] = fn(uv);
             }
             bar.advance(t.width);
         }
@@ -48,6 +48,11 @@ void fill_table(Texture2DData& t, int threads, ProgressBar& bar, const std::func
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
     worker();
     for (auto& th : pool) th.join();
+}
+
+// The same for a three-channel fn; alpha 1.
+void fill_table(Texture2DData& t, int threads, ProgressBar& bar, const std::function<glm::vec3(glm::vec2)>& fn) {
+    fill_table4(t, threads, bar, [&](glm::vec2 uv) { return glm::vec4(fn(uv), 1.0f); });
 }
 
 int resolve_threads(int threads) {
@@ -100,6 +105,31 @@ bool read_table(const fs::path& path, int w, int h, Texture2DData& t, std::strin
             return false;
         }
     return true;
+}
+// The multiple-scattering table: J_2 (atm_compute_ms), orders 3..ms_orders each from the previous
+// order's table, summed; alpha the Rayleigh anisotropy ratio (the second order's P2 moment over
+// the summed orders, atm_ms_rayleigh_factor), or 0 (isotropic) without ms_rayleigh_anisotropy.
+void build_ms_table(Texture2DData& ms, const shading::AtmosphereParams& a, const shading::sampler2D& trans,
+                    glm::vec2 trans_size, const ProductionQuality& q, int threads, ProgressBar& bar) {
+    using namespace cupola::shading;
+    const vec2 ms_size(ms.width, ms.height);
+    fill_table4(ms, threads, bar, [&](vec2 uv) {
+        const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
+        return atm_compute_ms(a, trans, trans_size, rs.x, rs.y, q.ms_directions, q.ms_steps, q.ms_orders == 0);
+    });
+    const int order_directions = q.ms_order_directions > 0 ? q.ms_order_directions : q.ms_directions;
+    Texture2DData order = ms;
+    for (int n = 3; n <= q.ms_orders; ++n) {
+        Texture2DData next = make_table(ms.width, ms.height);
+        const sampler2D prev{&order};
+        fill_table(next, threads, bar, [&](vec2 uv) {
+            const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
+            return atm_compute_ms_next_order(a, prev, ms_size, rs.x, rs.y, order_directions, q.ms_steps);
+        });
+        for (size_t i = 0; i < next.texels.size(); ++i) ms.texels[i] += glm::vec4(glm::vec3(next.texels[i]), 0.0f);
+        order = std::move(next);
+    }
+    for (auto& v : ms.texels) v.w = q.ms_rayleigh_anisotropy && v.y > 0.0f ? v.w / v.y : 0.0f;
 }
 }  // namespace
 
@@ -161,22 +191,7 @@ ProductionTables build_production_tables(const std::string& label, const shading
     });
     const sampler2D trans{&t.transmittance};
     if (q.multiple_scattering) {
-        fill_table(t.multiple_scattering, threads, bar, [&](vec2 uv) {
-            const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
-            return atm_compute_ms(a, trans, ts, rs.x, rs.y, q.ms_directions, q.ms_steps, q.ms_orders == 0);
-        });
-        // Orders 3..ms_orders, each from the previous order's table, summed into the table.
-        Texture2DData order = t.multiple_scattering;
-        for (int n = 3; n <= q.ms_orders; ++n) {
-            Texture2DData next = make_table(q.ms_size, q.ms_size);
-            const sampler2D prev{&order};
-            fill_table(next, threads, bar, [&](vec2 uv) {
-                const vec2 rs = atm_ms_r_mu_s(a, uv, ms_size);
-                return atm_compute_ms_next_order(a, prev, ms_size, rs.x, rs.y, q.ms_directions, q.ms_steps);
-            });
-            for (size_t i = 0; i < next.texels.size(); ++i) t.multiple_scattering.texels[i] += next.texels[i];
-            order = std::move(next);
-        }
+        build_ms_table(t.multiple_scattering, a, trans, ts, q, threads, bar);
     } else {
         bar.advance(1);
     }

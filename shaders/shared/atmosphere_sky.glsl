@@ -27,7 +27,9 @@ AtmosphereSplitSegment atm_march_interval(AtmosphereParams a, sampler2D trans, v
     s.mie_unphased = lit * a.mie_scattering_per_m * dm;
     s.multiple_per_sr = vec3(0.0);
     if (use_ms) {
-        s.multiple_per_sr = w * (a.rayleigh_scattering_per_m * dr + a.mie_scattering_per_m * dm) * atm_lookup_ms(a, ms, ms_size, r_t, mu_s_t);
+        vec4 psi = atm_lookup_ms_moment(a, ms, ms_size, r_t, mu_s_t);
+        float rayleigh_factor = atm_ms_rayleigh_factor(psi.w, nu);
+        s.multiple_per_sr = w * (a.rayleigh_scattering_per_m * (dr * rayleigh_factor) + a.mie_scattering_per_m * dm) * vec3(psi);
     }
     s.transmittance = exp(-sigma_t * dt);
     return s;

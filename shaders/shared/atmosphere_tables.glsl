@@ -6,7 +6,8 @@
 //  multiple_scattering  Psi_ms(r, mu_s) (after Hillaire 2020): the in-scattered radiance of orders
 //                 >= 2 per unit scattering coefficient, isotropic: the sum of J_2 .. J_N, each
 //                 order computed from the previous one's table (ms_orders), or J_2 / (1 - f_ms)
-//                 (Hillaire's geometric tail) when ms_orders is 0.
+//                 (Hillaire's geometric tail) when ms_orders is 0. Alpha: the Rayleigh anisotropy
+//                 ratio of the arriving light (atm_ms_rayleigh_factor), or 0.
 //  irradiance     E_sky(r, mu_s): sky irradiance on a horizontal surface (orders >= 1 from the
 //                 sky, not the direct Sun), for the ground's sky light.
 
@@ -20,6 +21,25 @@ vec3 atm_sun_transmittance(AtmosphereParams a, sampler2D table, vec2 size, float
 }
 vec3 atm_lookup_ms(AtmosphereParams a, sampler2D table, vec2 size, float r_m, float mu_s) {
     return vec3(textureLod(table, atm_ms_uv(a, r_m, mu_s, size), 0.0));
+}
+// The whole multiple-scattering texel: Psi_ms in rgb, the Rayleigh anisotropy ratio in alpha (see
+// atm_compute_ms).
+vec4 atm_lookup_ms_moment(AtmosphereParams a, sampler2D table, vec2 size, float r_m, float mu_s) {
+    return textureLod(table, atm_ms_uv(a, r_m, mu_s, size), 0.0);
+}
+// Legendre polynomial P2(c) = (3 c^2 - 1) / 2. The Rayleigh phase is (1 + P2(nu) / 2) / (4 pi).
+float atm_legendre_p2(float c) {
+    return 1.5 * c * c - 0.5;
+}
+// Factor on the Rayleigh part of the multiple scattering for a view at nu = cos(view, sun), from
+// the texel's anisotropy ratio k (alpha): the light arriving at the point from the first
+// scattering is not isotropic, and the Rayleigh phase of the next scattering weights it. With the
+// arriving radiance taken symmetric about the Sun direction, the integral of L times the Rayleigh
+// phase is Psi_ms (1 + k P2(nu) / 2), k = the P2(cos to the Sun) moment of L over its mean (the
+// addition theorem of spherical harmonics). Hillaire 2020 (section 5.1) takes the whole term
+// isotropic; Mie's part stays so. k is 0 in tables built without ms_rayleigh_anisotropy.
+float atm_ms_rayleigh_factor(float k, float nu) {
+    return max(1.0 + 0.5 * k * atm_legendre_p2(nu), 0.0);
 }
 vec3 atm_lookup_irradiance(AtmosphereParams a, sampler2D table, vec2 size, float r_m, float mu_s) {
     return vec3(textureLod(table, atm_ms_uv(a, r_m, mu_s, size), 0.0));
@@ -92,10 +112,14 @@ vec3 atm_sphere_direction(int i, int n) {
 // geometric_tail, the orders >= 3 are added as Hillaire 2020 does: J_2 / (1 - f_ms), which
 // assumes every point sees the same J as the table point (fine by day, ~2x too bright in
 // twilight); without it, only J_2 (the builder adds orders >= 3 by atm_compute_ms_next_order).
-vec3 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r_m, float mu_s, int directions,
+// Alpha: the same integral weighted by P2 of the arriving light's cosine to the Sun (P2 is even:
+// toward or from the Sun alike), at 550 nm; the builder divides it by the summed orders, for
+// atm_ms_rayleigh_factor.
+vec4 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float r_m, float mu_s, int directions,
                     int steps, bool geometric_tail) {
     vec3 l2 = vec3(0.0);
     vec3 f = vec3(0.0);
+    float moment = 0.0;
     float sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
     for (int i = 0; i < directions; ++i) {
         vec3 w = atm_sphere_direction(i, directions);
@@ -103,11 +127,13 @@ vec3 atm_compute_ms(AtmosphereParams a, sampler2D trans, vec2 trans_size, float 
         AtmosphereMsTerms m = atm_ms_terms_along(a, trans, trans_size, r_m, w.z, mu_s, nu, steps);
         l2 = l2 + m.second_order_per_sr;
         f = f + m.transfer;
+        moment = moment + m.second_order_per_sr.y * atm_legendre_p2(nu);
     }
     l2 = l2 * (1.0 / float(directions));
     f = f * (1.0 / float(directions));
-    if (!geometric_tail) return l2;
-    return l2 / max(vec3(1.0) - f, 1e-3);
+    moment = moment * (1.0 / float(directions));
+    if (!geometric_tail) return vec4(l2, moment);
+    return vec4(l2 / max(vec3(1.0) - f, 1e-3), moment);
 }
 
 // Next-order texel: J_{n+1}(x) = 1/n sum over directions of the integral of T sigma_s J_n along
