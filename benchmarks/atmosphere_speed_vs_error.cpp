@@ -148,11 +148,11 @@ int main(int argc, char** argv) {
                     r.accuracy.overall.chroma_median, r.pareto ? "yes" : "no");
     if (!csv.empty()) {
         std::ofstream out(csv);
-        out << "model,ms_frame,ms_pass,build_s,table_kib,median,p99,chroma_median,pareto\n";
+        out << "model,ms_frame,ms_pass,build_s,table_kib,median,p99,chroma_median,pareto,default\n";
         for (const auto& r : rows)
             out << r.level << "," << r.ms_frame << "," << r.ms_pass << "," << r.build_s << "," << r.table_kib << ","
                 << r.accuracy.overall.median << "," << r.accuracy.overall.p99 << "," << r.accuracy.overall.chroma_median
-                << "," << (r.pareto ? 1 : 0) << "\n";
+                << "," << (r.pareto ? 1 : 0) << "," << (r.level == at::kDefaultProductionQuality ? 1 : 0) << "\n";
     }
     for (const auto& r : rows)
         if (r.level == at::kDefaultProductionQuality && !r.pareto) {

@@ -3,7 +3,7 @@
 
 usage: plot_speed_vs_error.py FIGURES.csv OUT.png [TITLE]
 x: milliseconds per frame (full channel render), y: median relative luminance error (log).
-Pareto-optimal models are joined by a line; the default model is ringed.
+Pareto-optimal models are joined by a line; the default model (the CSV's default column) is ringed.
 """
 import csv
 import sys
@@ -27,8 +27,9 @@ def main() -> int:
         x, y = float(r["ms_frame"]), 100 * float(r["median"])
         ax.scatter([x], [y], s=40, color="tab:blue" if r["pareto"] == "1" else "tab:gray", zorder=3)
         ax.annotate(r["model"], (x, y), textcoords="offset points", xytext=(6, 4), fontsize=9)
-        if r["model"] == "medium":
-            ax.scatter([x], [y], s=160, facecolors="none", edgecolors="tab:red", zorder=4, label="default (medium)")
+        if r.get("default") == "1":
+            ax.scatter([x], [y], s=160, facecolors="none", edgecolors="tab:red", zorder=4,
+                       label=f"default ({r['model']})")
     front = sorted((float(r["ms_frame"]), 100 * float(r["median"])) for r in rows if r["pareto"] == "1")
     ax.plot([p[0] for p in front], [p[1] for p in front], color="tab:blue", lw=1, label="Pareto front")
     ax.set_yscale("log")
