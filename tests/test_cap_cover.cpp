@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <numbers>
 #include <random>
 
@@ -19,7 +20,9 @@
 #include "gl/gl_program.hpp"
 #include "passes/cap_cover.hpp"
 #include "passes/sphere_billboard.hpp"
+#include "image/frame_image.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/test_support.hpp"
 
 using namespace cupola;
 
@@ -90,8 +93,10 @@ TEST(CapCover, ANearlyFullSphereOfDirectionsHasNoFan) {
 
 namespace {
 // Renders the cover of a sphere (centre in the channel frame, metres) into a 256 x 192 channel and
-// checks it against the pixels whose rays meet the sphere. Returns the covered pixel count.
-int check_cover(const glm::dvec3& center_m, double radius_m, int& hits) {
+// checks it against the pixels whose rays meet the sphere. Returns the covered pixel count. Writes
+// build/test-tmp/CapCover_<name>/<name>.png to look at: blue where the ray meets the sphere, red where
+// the fan covers a pixel that does not show it, black elsewhere.
+int check_cover(const std::string& name, const glm::dvec3& center_m, double radius_m, int& hits) {
     context();
     const ChannelFrustum f(EulerDeg{0, 0, 0}, FovDeg{40, 50, 35, 45}, 256, 192);
     ChannelView view;
@@ -108,6 +113,7 @@ int check_cover(const glm::dvec3& center_m, double radius_m, int& hits) {
     glDisable(GL_DEPTH_TEST);
     draw_cover(program, view, s);
     const Image img = fb.read();
+    Image look = img;
     int covered = 0;
     hits = 0;
     for (int y = 0; y < f.height(); ++y)
@@ -118,7 +124,17 @@ int check_cover(const glm::dvec3& center_m, double radius_m, int& hits) {
             covered += on ? 1 : 0;
             hits += hit ? 1 : 0;
             EXPECT_TRUE(on || !hit) << "pixel " << x << "," << y << " shows the sphere but is not covered";
+            float* px = look.pixel(x, f.height() - 1 - y);
+            px[0] = on && !hit ? 1.0f : 0.0f;
+            px[1] = 0.0f;
+            px[2] = hit ? 1.0f : 0.0f;
+            px[3] = 1.0f;
         }
+    FrameMetadata meta;
+    meta.channel_name = name;
+    const std::string dir = test::scratch_dir("CapCover_" + name);
+    const auto paths = write_frame(dir, look, meta, {"png"}, 1.0);
+    std::filesystem::rename(paths.at(0), dir + "/" + name + ".png");
     return covered;
 }
 }  // namespace
@@ -129,23 +145,23 @@ TEST(CapCoverRender, TheFanCoversEveryPixelOfTheSphereInTheHardCases) {
     // ground fills the lower part; the fan's rim lies behind the camera.
     const double R = 6.371e6;
     const glm::dvec3 nadir(0.0, -std::cos(20.0 * kDeg), std::sin(20.0 * kDeg));  // the view 20 degrees up
-    int covered = check_cover((R + 2.0) * nadir, R, hits);
+    int covered = check_cover("earth-from-2m", (R + 2.0) * nadir, R, hits);
     EXPECT_GT(hits, 1000);
     EXPECT_LT(covered, hits + 8 * 256);  // a few rows of margin, not the whole channel
     // Behind the camera: nothing hit, nothing covered.
-    covered = check_cover(glm::dvec3(0, 0, 1.0e7), 1.0e6, hits);
+    covered = check_cover("behind", glm::dvec3(0, 0, 1.0e7), 1.0e6, hits);
     EXPECT_EQ(hits, 0);
     EXPECT_EQ(covered, 0);
     // Much smaller than a pixel, off-centre: covered by a few pixels.
-    covered = check_cover(glm::dvec3(0.1e9, 0.05e9, -1.0e9), 10.0, hits);
+    covered = check_cover("sub-pixel", glm::dvec3(0.1e9, 0.05e9, -1.0e9), 10.0, hits);
     EXPECT_GE(covered, 1);
     EXPECT_LE(covered, 36);
     // Half off the channel's right edge.
-    covered = check_cover(glm::dvec3(1.2e9, 0.0, -1.0e9), 2.0e8, hits);
+    covered = check_cover("half-off", glm::dvec3(1.2e9, 0.0, -1.0e9), 2.0e8, hits);
     EXPECT_GT(hits, 100);
     EXPECT_LT(covered, 256 * 192);
     // Just outside a sphere ahead: a cap wider than the view covers all of it.
-    covered = check_cover(glm::dvec3(0.0, 0.0, -1.0001e6), 1.0e6, hits);
+    covered = check_cover("just-outside", glm::dvec3(0.0, 0.0, -1.0001e6), 1.0e6, hits);
     EXPECT_EQ(hits, 256 * 192);
     EXPECT_EQ(covered, 256 * 192);
 }
