@@ -16,6 +16,9 @@ uniform float u_sigma_rad;      // PSF sigma, radians
 uniform float u_exposure;       // the snapshot's; <= 0: u_fixed_reach_sigma for every star
 uniform float u_min_display;    // the display value below which a pixel cannot change
 uniform float u_fixed_reach_sigma;
+uniform vec3 u_occluder_dir;    // unit, channel frame: the largest body on screen
+uniform float u_occluder_rad;   // its angular radius; <= 0: none
+uniform float u_pixel_rad;      // the widest angle a pixel spans
 
 flat out vec3 v_color;    // flux times the unit-luminance B-V colour
 flat out vec2 v_t;        // tangent-plane point of the star
@@ -39,4 +42,10 @@ void main() {
     }
     // Every pixel centre within the reach of the star's point, plus one pixel for the pixel's extent.
     gl_PointSize = clamp(ceil(2.0 * reach_sigma * u_sigma_rad * px_per_rad) + 2.0, 1.0, 255.0);
+    // Wholly behind the occluder (its reach and two pixels inside the disc's edge): the body pass
+    // paints over it, so it is not drawn (a point outside the clip volume is discarded).
+    float inside_rad = u_occluder_rad - reach_sigma * u_sigma_rad - 2.0 * u_pixel_rad;
+    if (u_occluder_rad > 0.0 && inside_rad > 0.0 && dot(d, u_occluder_dir) > cos(inside_rad)) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    }
 }

@@ -31,6 +31,7 @@ double StarPass::visible_magnitude(double exposure) const {
 int StarPass::prepare(const FrameContext& frame) {
     view_ = &frame.view;
     exposure_ = frame.snap->settings.exposure;
+    occluder_ = largest_occluder(frame);
     magnitude_limit_ =
         std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
                   visible_magnitude(frame.snap->settings.exposure)});
@@ -38,9 +39,22 @@ int StarPass::prepare(const FrameContext& frame) {
     return any ? 1 : 0;
 }
 
-void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_); }
+StarOccluder StarPass::largest_occluder(const FrameContext& frame) {
+    StarOccluder o;
+    double best = 0.0;
+    for (const FrameBody& b : frame.far_to_near) {
+        const double s = b.sphere.sin_alpha;
+        if (b.body->kind == BodyKind::Star || !(s > best) || !(s < 1.0)) continue;
+        best = s;
+        o.center_dir = glm::vec3(b.sphere.center_dir);
+        o.radius_rad = static_cast<float>(std::atan2(s, std::sqrt((1.0 - s) * (1.0 + s))));
+    }
+    return o;
+}
 
-void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure) {
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_, occluder_); }
+
+void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure, StarOccluder occluder) {
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
         magnitudes_.begin());
@@ -67,6 +81,11 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     program_.set("u_exposure", static_cast<float>(exposure));
     program_.set("u_min_display", static_cast<float>(kMinDisplay));
     program_.set("u_fixed_reach_sigma", static_cast<float>(kFixedReachSigma));
+    program_.set("u_occluder_dir", occluder.center_dir);
+    program_.set("u_occluder_rad", occluder.radius_rad);
+    // Two pixels (at the centre, where a pixel spans the widest angle) beyond a star's reach.
+    program_.set("u_pixel_rad", static_cast<float>(std::max((f.tan_left() + f.tan_right()) / f.width(),
+                                                            (f.tan_down() + f.tan_up()) / f.height())));
     program_.set("u_tangents", view.tangents());
     program_.set("u_size", view.size());
     glEnable(GL_PROGRAM_POINT_SIZE);

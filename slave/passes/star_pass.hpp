@@ -13,14 +13,24 @@
 
 namespace cupola {
 
+// The body that hides the most sky from the stars: its centre direction (unit, channel frame) and
+// angular radius; none when radius_rad <= 0.
+struct StarOccluder {
+    glm::vec3 center_dir{0.0f, 0.0f, -1.0f};
+    float radius_rad = 0.0f;
+};
+
 class StarPass : public RenderPass {
 public:
     // stars: any order (sorted here by magnitude so a limit is a prefix).
     StarPass(const StarFieldConfig& config, std::vector<Star> stars);
     // Adds the stars brighter than magnitude_limit into the bound framebuffer, each over the
     // pixels where its PSF can reach kMinDisplay at this exposure (stars.vert; exposure <= 0:
-    // the PSF out to kFixedReachSigma for every star).
-    void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0);
+    // the PSF out to kFixedReachSigma for every star). A star whose sprite lies wholly behind the
+    // occluder (which the body pass then paints over, opaque) is not drawn.
+    void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0, StarOccluder occluder = {});
+    // The largest body on screen of a frame, not a star and not around the camera.
+    static StarOccluder largest_occluder(const FrameContext& frame);
     static constexpr double kFixedReachSigma = 4.0;
 
     // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
@@ -46,6 +56,7 @@ private:
     const ChannelView* view_ = nullptr;
     double magnitude_limit_ = 0.0;
     double exposure_ = 0.0;
+    StarOccluder occluder_;
 };
 
 }  // namespace cupola
