@@ -19,6 +19,7 @@
 #include "image/frame_image.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -35,15 +36,7 @@ constexpr uint16_t kSun = 0, kEarth = 1, kRock = 2;
 
 // One context for the whole executable, created with no window system in the environment; the
 // atmosphere tables go to a scratch cache (built by the first renderer, loaded by the others).
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("AtmosphereRender_cache").c_str(), 1);
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl("AtmosphereRender"); }
 
 // A scene file: the Sun, an Earth-sized planet (white texture, albedo kAlbedo) with the given
 // atmosphere model ("" for none), and optionally a 1 m rock.

@@ -13,6 +13,7 @@
 #include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "scene_renderer.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -20,15 +21,7 @@ using namespace cupola;
 namespace {
 constexpr double kR = 6.371e6, kAu = 1.496e11;
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("AtmosphereStars_cache").c_str(), 1);
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl("AtmosphereStars"); }
 
 glm::dvec3 radec_to_vec(double ra, double dec) {
     return {std::cos(dec) * std::cos(ra), std::cos(dec) * std::sin(ra), std::sin(dec)};

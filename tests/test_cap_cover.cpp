@@ -22,6 +22,7 @@
 #include "passes/sphere_billboard.hpp"
 #include "image/frame_image.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -49,14 +50,7 @@ glm::dvec3 around(const glm::dvec3& axis, double theta, double phi) {
     return std::cos(theta) * axis + std::sin(theta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
 }
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl(); }
 
 }  // namespace
 

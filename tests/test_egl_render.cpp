@@ -14,6 +14,7 @@
 #include "scene/star_catalog.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -23,14 +24,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // One context for the whole executable, created with no window system in the environment.
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl(); }
 
 struct OneStarScene {
     SceneConfig scene;

@@ -19,21 +19,14 @@
 #include "master_node.hpp"
 #include "scene_renderer.hpp"
 #include "show_script.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
 
 namespace {
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("GlareHaloComposite_cache").c_str(), 1);
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl("GlareHaloComposite"); }
 
 SceneConfig scene() {
     SceneConfig s = load_scene_config(test::source_path("configs/scenes/earth-moon.json"));

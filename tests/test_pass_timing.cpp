@@ -12,21 +12,14 @@
 #include "config/scene_config.hpp"
 #include "gl/egl_context.hpp"
 #include "scene_renderer.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
 
 namespace {
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("PassTiming_cache").c_str(), 1);
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl("PassTiming"); }
 
 // A Sun, an airless planet filling part of a 32^2 view, one bright star, glare on.
 struct Frame {

@@ -21,6 +21,7 @@
 #include "gl/gl_program.hpp"
 #include "passes/render_pass.hpp"
 #include "scene_renderer.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -34,15 +35,7 @@ constexpr double kMoonOffsetRad = 2.5 * std::numbers::pi / 180.0;  // right of t
 constexpr uint16_t kSun = 0, kEarth = 1, kMoon = 2;
 const glm::vec3 kAdd(0.25f, 0.5f, 1.0f);
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        setenv("CUPOLA_CACHE_DIR", test::scratch_dir("RenderPasses_cache").c_str(), 1);
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl("RenderPasses"); }
 
 SceneConfig make_scene(bool glare) {
     const std::string dir = test::scratch_dir(glare ? "RenderPasses_glare" : "RenderPasses");

@@ -14,6 +14,8 @@
 #include "gl/gl_framebuffer.hpp"
 #include "passes/star_pass.hpp"
 #include "projection/channel_frustum.hpp"
+#include "support/headless_gl.hpp"
+#include "support/test_support.hpp"
 
 using namespace cupola;
 
@@ -22,14 +24,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr int kSize = 128;
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl(); }
 
 // The direction `below_deg` under the view axis (-z), as a catalogue star (the channel frame is
 // the world frame here).

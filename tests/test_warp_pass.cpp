@@ -18,6 +18,7 @@
 #include "image/frame_image.hpp"
 #include "output/warp_pass.hpp"
 #include "shading/shared_shading.hpp"
+#include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -25,14 +26,7 @@ namespace sh = cupola::shading;
 
 namespace {
 
-EglContext& context() {
-    static EglContext* ctx = [] {
-        unsetenv("DISPLAY");
-        unsetenv("WAYLAND_DISPLAY");
-        return new EglContext(-1);
-    }();
-    return *ctx;
-}
+EglContext& context() { return test::headless_gl(); }
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
