@@ -12,7 +12,8 @@
 //   {"view", "size", "frames", "model", "renderer", "read_back", "frame_ms", "untimed_frame_ms",
 //    "trivial_ms", "ratio", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
-//    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate"}
+//    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
+//    "surface_separate"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end). With
 // --read-back every frame is also read back as RGBA32F (what a files sink needs) and that is
@@ -24,7 +25,7 @@
 // in a show where time runs: the sky-view table is then re-rendered whenever the Sun's zenith
 // angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
-//                        [--images DIR] [--sun-step-deg D] [--halo-separate]
+//                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -187,7 +188,7 @@ double median(std::vector<double> v) {
 
 struct Options {
     int size = 1024, frames = 10, warm_up = 2, device = -1;
-    bool read_back = false, halo_separate = false;
+    bool read_back = false, halo_separate = false, surface_separate = false;
     double sun_step_deg = 0.0;
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
@@ -318,6 +319,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["sun_zenith_deg"] = 90.0 - v.sun_el_deg;
     j["sun_step_deg"] = o.sun_step_deg;
     j["halo_separate"] = o.halo_separate;
+    j["surface_separate"] = o.surface_separate;
     return j;
 }
 
@@ -357,6 +359,7 @@ int run(const Options& o) {
     if (scene.glare.enabled) glare = std::make_unique<GlareSources>(scene, &atmospheres);
     SceneRenderer r(cluster, cluster.channels[0], scene);
     r.set_halo_with_atmosphere(!o.halo_separate);
+    r.set_surface_with_atmosphere(!o.surface_separate);
     TrivialPass trivial(o.size);
     for (const ViewSpec* v : views) {
         const Snapshot snap = view_snapshot(*v, scene, cluster, exposure, glare.get());
@@ -382,6 +385,8 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.size, "channel width and height in pixels")->check(CLI::Range(16, 8192));
     app.add_option("--frames", o.frames, "timed frames per view (medians reported)")->check(CLI::Range(1, 100000));
     app.add_option("--warm-up", o.warm_up, "untimed frames per view first")->check(CLI::Range(0, 1000));
+    app.add_flag("--surface-separate", o.surface_separate,
+                 "the body pass draws the Earth's surface, never the atmosphere (for comparison)");
     app.add_flag("--halo-separate", o.halo_separate,
                  "the glare pass draws the glare's halo on its own, never the atmosphere (for comparison)");
     app.add_option("--sun-step-deg", o.sun_step_deg,

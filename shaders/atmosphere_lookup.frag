@@ -40,6 +40,9 @@ uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
 uniform sampler2D u_halo;  // SKY_HALO: the glare's halo target (slave/passes/glare_halo_pass.hpp)
 uniform vec4 u_halo_map;   // its texture coordinate = gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw
+uniform sampler2D u_body_map;   // SKY_HALF 2: the planet's map (linear RGB), as the body pass has it
+uniform mat3 u_channel_to_body;
+uniform vec3 u_reflectance;     // albedo * tint
 
 layout(location = 0, index = 0) out vec4 out_add;
 layout(location = 0, index = 1) out vec4 out_factor;
@@ -67,6 +70,11 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
 //   SKY_GEOMETRY      another body is inside the shell: pixels showing it march up to it
 //   SKY_ILLUSTRATIVE  illustrative eclipse shadows tint the surface
 //   SKY_HALO          the glare's halo is added here, not by a full-screen draw of its own
+//   SKY_HALF          0 every pixel; 1 the sky only, 2 the ground only (inside, without
+//                     SKY_GEOMETRY): the draw is split in two by the ray's ground flag, each half
+//                     over its own cap and discarding the other's pixels, and each free of the
+//                     other's branch. In the ground half the body pass did not draw the planet:
+//                     the reflectance comes from its map here, not from the G-buffer
 
 // The pixel's light from the table at uv: through the air (sky) or on the ground (relit surface).
 void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
@@ -89,6 +97,16 @@ void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) 
     out_factor = vec4(0.0, 0.0, 0.0, 1.0);
 }
 
+#if SKY_HALF == 2
+// What the body pass would have written into the G-buffer: (reflectance, 0) where the ray meets
+// the planet (the same hit and map coordinates as body.frag), else "nothing drawn".
+vec4 surface_reflectance(vec3 v) {
+    vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
+    if (hit.w < 0.0) return vec4(0.0, 0.0, 0.0, -1.0);
+    return vec4(u_reflectance * textureLod(u_body_map, body_map_uv(u_channel_to_body, hit.xyz), 0.0).rgb, 0.0);
+}
+#endif
+
 #if !SKY_OUTSIDE
 // A camera inside the atmosphere: the ray starts at the camera, so (r, mu) are the camera's; no
 // inverse trigonometry per pixel. Without SKY_GEOMETRY nothing but this planet can be drawn in
@@ -101,9 +119,21 @@ void shade(vec3 v, ivec2 px) {
     float r = max(u_d_m, u_atm.bottom_radius_m + 1.0);
     float mu = dot(v, up);
     bool ground = atm_ray_hits_ground(u_atm, r, mu);
+#if SKY_HALF == 1
+    if (ground) discard;
+    ground = false;
+#elif SKY_HALF == 2
+    if (!ground) discard;
+    ground = true;
+#endif
     bool surface = ground;
     vec4 geo = vec4(0.0, 0.0, 0.0, -1.0);
+#if SKY_HALF == 2
+    geo = surface_reflectance(v);
+#elif SKY_HALF == 1
+#else
     if (SKY_GEOMETRY != 0 || ground) geo = texelFetch(u_geometry, px, 0);
+#endif
 #if SKY_GEOMETRY
     float g = geo.a;
     if (g >= 0.0) {  // this planet's surface (the body pass's own hit decides), or something in front

@@ -31,11 +31,7 @@ void main() {
         discard;
     }
     vec3 n = hit.xyz;
-    vec3 nb = u_channel_to_body * n;
-    float lon = atan(nb.y, nb.x);
-    float lat = asin(clamp(nb.z, -1.0, 1.0));
-    vec2 uv = vec2(0.5 + lon / (2.0 * CUPOLA_PI), 0.5 - lat / CUPOLA_PI);
-    vec3 albedo_map = textureLod(u_texture, uv, 0.0).rgb;
+    vec3 albedo_map = textureLod(u_texture, body_map_uv(u_channel_to_body, n), 0.0).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     vec3 light = vec3(1.0);
 #if BODY_ECLIPSE

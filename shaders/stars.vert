@@ -42,8 +42,9 @@ void main() {
     }
     // Every pixel centre within the reach of the star's point, plus one pixel for the pixel's extent.
     gl_PointSize = clamp(ceil(2.0 * reach_sigma * u_sigma_rad * px_per_rad) + 2.0, 1.0, 255.0);
-    // Wholly behind the occluder (its reach and two pixels inside the disc's edge): the body pass
-    // paints over it, so it is not drawn (a point outside the clip volume is discarded).
+    // Wholly behind the occluder (its reach and two pixels inside the disc's edge): the body pass,
+    // or the atmosphere relighting the ground, paints over it, so it is not drawn (a point outside
+    // the clip volume is discarded).
     float inside_rad = u_occluder_rad - reach_sigma * u_sigma_rad - 2.0 * u_pixel_rad;
     if (u_occluder_rad > 0.0 && inside_rad > 0.0 && dot(d, u_occluder_dir) > cos(inside_rad)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);

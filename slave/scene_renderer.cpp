@@ -88,7 +88,10 @@ struct SceneRenderer::Impl {
             halo = &add(std::make_unique<GlareHaloPass>(scene, *glare_probe));
         // The atmospheres, one draw per body in view, far to near: colour and G-buffer in, colour
         // out; the nearest, when it covers the channel, adds the glare's halo in the same draw.
-        if (!atm.empty()) atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo));
+        if (!atm.empty()) {
+            atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo, &painter.bodies()));
+            painter.set_surface_drawer(atmosphere);
+        }
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
@@ -201,6 +204,7 @@ AtmosphereStats SceneRenderer::atmosphere_stats() const {
         s.passes_marched = impl_->atmosphere->draws_marched();
         s.sky_view_renders = impl_->atmosphere->sky_view_renders();
         s.halos_added = impl_->atmosphere->halos_added();
+        s.surfaces_drawn = impl_->atmosphere->surfaces_drawn();
     }
     return s;
 }
@@ -244,6 +248,10 @@ void SceneRenderer::set_pass_timing(bool on) { impl_->timing = on; }
 
 void SceneRenderer::set_halo_with_atmosphere(bool on) {
     if (impl_->atmosphere) impl_->atmosphere->set_add_halo(on);
+}
+
+void SceneRenderer::set_surface_with_atmosphere(bool on) {
+    if (impl_->atmosphere) impl_->atmosphere->set_draw_surfaces(on);
 }
 
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }

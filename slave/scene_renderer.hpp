@@ -27,6 +27,7 @@ struct AtmosphereStats {
     long passes_marched = 0;         // of the passes run, those that marched every pixel
     long sky_view_renders = 0;       // sky-view tables rendered (only when their inputs change)
     long halos_added = 0;            // draws that added the glare's halo (then no draw of its own)
+    long surfaces_drawn = 0;         // draws that drew their planet's surface (then no body pass)
 };
 
 // The wall time of one frame, per pass, when pass timing is on (SceneRenderer::set_pass_timing).
@@ -64,8 +65,12 @@ public:
     void set_pass_timing(bool on);
     // Whether the nearest atmosphere's draw may add the glare's halo when it covers the channel
     // (on by default); off, the glare pass always upsamples the halo on its own (the two must
-    // give the same image: tests/test_glare_halo_composite.cpp).
+    // give the same image: tests/test_atmosphere_fused_draws.cpp).
     void set_halo_with_atmosphere(bool on);
+    // Whether the atmosphere's draw may draw its planet's surface itself, from inside the air (on
+    // by default; AtmospherePass::draws_surface); off, the body pass draws it into the G-buffer
+    // (the same image again: tests/test_atmosphere_fused_draws.cpp).
+    void set_surface_with_atmosphere(bool on);
     // The last frame's timings while pass timing is on (empty before the first timed frame).
     const FrameTimings& last_frame_timings() const;
 

@@ -1,7 +1,8 @@
 // Stars behind the largest body on screen are not drawn (shaders/stars.vert, StarPass): on a real
 // headless EGL context (llvmpipe on CI), a star deep inside the body's disc leaves its pixels
 // black, one just inside the disc's edge (within its PSF's reach of it) and one outside are drawn,
-// and without an occluder all three are. The body pass paints the disc over opaque, so a frame
+// and without an occluder all three are. The body pass (or the atmosphere, relighting the ground)
+// paints the disc over opaque, so a frame
 // does not change; the scene tests (test_egl_render, test_atmosphere_stars) check the frames.
 #include <gtest/gtest.h>
 

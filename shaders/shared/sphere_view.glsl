@@ -52,3 +52,13 @@ float sphere_hit_distance(vec3 v, vec3 c_hat, float mu, vec4 dist_m) {
 float log_depth(float distance_m) {
     return clamp(log2(max(distance_m, 1.0)) / 96.0, 0.0, 1.0);
 }
+
+// Texture coordinates of an equirectangular body map (row 0 = north, lon = atan(y, x) in the body
+// frame, north = +Z) at the unit surface normal n (channel frame): body.frag draws with it, and
+// the atmosphere's look-up when it relights a surface that no body pass drew.
+vec2 body_map_uv(mat3 channel_to_body, vec3 n) {
+    vec3 nb = channel_to_body * n;
+    float lon = atan(nb.y, nb.x);
+    float lat = asin(clamp(nb.z, -1.0, 1.0));
+    return vec2(0.5 + lon / (2.0 * CUPOLA_PI), 0.5 - lat / CUPOLA_PI);
+}

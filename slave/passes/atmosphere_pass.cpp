@@ -34,7 +34,7 @@ atmosphere::ProductionAtmosphere make_model(const BodyConfig& body) {
 }
 
 // tables: 2..5, sky view: 7..9
-enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7, kHalo = 10 };
+enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7, kHalo = 10, kSurface = 11 };
 
 // Direction from the planet's centre to the Sun (as the body pass lights it), and the Sun's
 // irradiance there in scene units over that of the model's physical spectrum; in double.
@@ -56,6 +56,10 @@ PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphe
 // What the sky-view table depends on, from world positions in double (the same on every channel):
 // the camera's distance from the centre and the Sun's zenith cosine at the camera, on the table's
 // grid of Sun zenith angles (atmosphere::sky_view_table_sun_mu).
+float camera_distance_m(const ChannelView& view, const BodyState& state) {
+    return static_cast<float>(glm::length(view.camera_position_m - state.position_m));
+}
+
 glm::vec2 sky_view_inputs(const ChannelView& view, const BodyState& state, const glm::dvec3& sun_dir_world) {
     const glm::dvec3 up = view.camera_position_m - state.position_m;
     const double d = glm::length(up);
@@ -120,19 +124,25 @@ bool sphere_outside_frustum(const ChannelFrustum& f, const glm::dvec3& c, double
     return false;
 }
 
-AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo)
+AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo,
+                               const BodyPass* bodies)
     : atmospheres_(std::move(atmospheres)),
       shadows_(shadows),
       program_("sphere.vert", "atmosphere.frag"),
-      halo_(halo) {}
+      halo_(halo),
+      bodies_(bodies) {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
-    auto& p = lookup_programs_[variant & 15];
+    auto& p = lookup_programs_[variant & 63];
     if (!p) {
         const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
                                     std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
                                     std::to_string((variant >> 2) & 1) + "\n#define SKY_HALO " +
-                                    std::to_string((variant >> 3) & 1) + "\n";
+                                    std::to_string((variant >> 3) & 1) + "\n#define SKY_HALF " +
+                                    std::to_string((variant & 16)   ? 2
+                                                   : (variant & 32) ? 1
+                                                                    : 0) +
+                                    "\n";
         p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
@@ -174,16 +184,38 @@ const GlareHaloPass* AtmospherePass::halo_for(int step) const {
     return covers ? halo_ : nullptr;
 }
 
+bool AtmospherePass::draws_surface(const FrameContext& f, const FrameBody& planet) const {
+    if (!draw_surfaces_ || !bodies_ || !bodies_->texture(planet.body->id)) return false;
+    const auto a = atmospheres_.find(planet.body->id);
+    if (a == atmospheres_.end() || !a->second->model().quality().sky_view) return false;
+    if (f.casters_of(planet.body->id).count > 0) return false;  // shadows: the march, or the tint
+    const float d = camera_distance_m(f.view, *planet.state);   // as the table's input
+    if (shading::atm_camera_outside(a->second->model().shader_params(), d)) return false;
+    return !other_body_in_shell(f, planet, a->second->top_radius_m());
+}
+
+AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
+    AtmosphereDrawExtras e;
+    e.halo = halo_for(step);
+    const Layer& l = layers_.at(static_cast<size_t>(step));
+    if (draws_surface(*frame_, *l.body)) {
+        e.surface_map = bodies_->texture(l.body->body->id);
+        e.channel_to_body = BodyPass::channel_to_body(frame_->view, *l.body->state);
+        e.surface_reflectance = glm::vec3(l.body->body->tint) * static_cast<float>(l.body->body->albedo);
+    }
+    return e;
+}
+
 void AtmospherePass::draw(const PassInputs& in, int step) {
     const Layer& l = layers_.at(static_cast<size_t>(step));
     const FrameContext& f = *frame_;
     draw(f.view, *l.atmosphere, *l.body->state, l.body->sphere, f.light, *in.geometry, shadows_,
-         f.casters_of(l.body->body->id), l.geometry_in_air, halo_for(step));
+         f.casters_of(l.body->body->id), l.geometry_in_air, extras_for(step));
 }
 
 const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::vec2& table_in,
                                                 const shading::EclipseCasters& casters, bool geometry_in_air,
-                                                const GlareHaloPass*& halo) {
+                                                AtmosphereDrawExtras& extras, int half) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const bool shadowed = casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
     GpuSkyViewTable* table = atm.sky_view();
@@ -192,13 +224,22 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         const shading::AtmosphereParams& a = m.shader_params();
         const bool outside = shading::atm_camera_outside(a, table_in.x);
         const bool illustrative = casters.count > 0;
-        const GlProgram& lookup =
-            lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0) | (halo ? 8 : 0));
+        const GlProgram& lookup = lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) |
+                                                 (illustrative ? 4 : 0) | (extras.halo ? 8 : 0) |
+                                                 (half == 2   ? 16
+                                                  : half == 1 ? 32
+                                                              : 0));
         lookup.use();
-        if (halo) {
-            halo->texture().bind(kHalo);
+        if (extras.halo) {
+            extras.halo->texture().bind(kHalo);
             lookup.set("u_halo", static_cast<int>(kHalo));
-            lookup.set("u_halo_map", halo->grid().map);
+            lookup.set("u_halo_map", extras.halo->grid().map);
+        }
+        if (half == 2) {
+            extras.surface_map->bind(kSurface);
+            lookup.set("u_body_map", static_cast<int>(kSurface));
+            lookup.set("u_channel_to_body", extras.channel_to_body);
+            lookup.set("u_reflectance", extras.surface_reflectance);
         }
         table->bind(kSkyView);
         lookup.set("u_sky_phased", static_cast<int>(kSkyView));
@@ -210,7 +251,8 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         return lookup;
     }
     ++marched_;
-    halo = nullptr;  // the march adds none: the glare pass upsamples it
+    if (extras.surface_map) throw std::logic_error("atmosphere pass: a marched draw cannot draw the planet's surface");
+    extras.halo = nullptr;  // the march adds none: the glare pass upsamples it
     const atmosphere::ProductionQuality& q = m.quality();
     program_.use();
     program_.set("u_fit.k1_rad", m.analytic_fit().k1_rad);
@@ -223,12 +265,42 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
 
 void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const BodyState& state, const SphereView& sphere,
                           const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-                          const shading::EclipseCasters& casters, bool geometry_in_air, const GlareHaloPass* halo) {
+                          const shading::EclipseCasters& casters, bool geometry_in_air, AtmosphereDrawExtras extras) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
     const PlanetSun ps = planet_sun(state, sun, m);
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
-    const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, halo);
+    const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());
+    if (!extras.surface_map) {
+        // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a
+        // fan), the viewport from inside; the scissor bounds both.
+        const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, extras, 0);
+        set_draw_uniforms(p, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        blend_draw(p, view, r, make_sphere_view(view, state.position_m, atm.top_radius_m()));
+    } else {
+        // Two draws split by the ray's ground flag, each discarding the other's pixels: the sky over
+        // the cap around the zenith that misses the planet, the ground (with the planet's map) over
+        // the planet's own cap.
+        const GlProgram& sky = choose_program(atm, table_in, casters, geometry_in_air, extras, 1);
+        set_draw_uniforms(sky, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        blend_draw(sky, view, r, complement_cover(view, sphere));
+        const GlProgram& ground = choose_program(atm, table_in, casters, geometry_in_air, extras, 2);
+        set_draw_uniforms(ground, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        blend_draw(ground, view, r, sphere);
+    }
+    if (extras.halo) {
+        extras.halo->mark_composited();
+        ++halos_added_;
+    }
+    if (extras.surface_map) ++surfaces_drawn_;
+    gl::check("atmosphere pass (" + m.parameters().name + ")");
+}
+
+void AtmospherePass::set_draw_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm,
+                                       const SphereView& sphere, double solar_scale, const glm::dvec3& sun_dir,
+                                       const GlTexture& geometry, const EclipseShadowUniforms& shadows,
+                                       const shading::EclipseCasters& casters) {
+    const atmosphere::ProductionAtmosphere& m = atm.model();
     p.set("u_tangents", view.tangents());
     p.set("u_size", view.size());
     p.set("u_center_dir", glm::vec3(sphere.center_dir));
@@ -237,29 +309,25 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     p.set("u_d_m", static_cast<float>(sphere.distance_m));
     p.set("u_sun", glm::vec3(sun_dir));
     p.set("u_sun_perp", shading::atm_sky_view_sun_perp(-glm::vec3(sphere.center_dir), glm::vec3(sun_dir)));
-    p.set("u_solar_scale", static_cast<float>(ps.solar_scale));
+    p.set("u_solar_scale", static_cast<float>(solar_scale));
     set_atmosphere_params(p, m.shader_params());
     bind_atmosphere_tables(p, atm, kTables);
     p.set("u_geometry", static_cast<int>(kGeometry));
     geometry.bind(kGeometry);
     shadows.apply(p, casters, kEclipseLut);
-    const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());
+}
+
+void AtmospherePass::blend_draw(const GlProgram& p, const ChannelView& view, const PixelRect& r,
+                                const SphereView& cover) {
     if (r.empty()) return;
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
     glEnablei(GL_BLEND, 0);
     glBlendFuncSeparatei(0, GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
     vao_.bind();
-    // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a fan),
-    // the viewport from inside; the scissor bounds both.
-    draw_cover(p, view, make_sphere_view(view, state.position_m, atm.top_radius_m()));
+    draw_cover(p, view, cover);
     glDisablei(GL_BLEND, 0);
     glDisable(GL_SCISSOR_TEST);
-    if (halo) {
-        halo->mark_composited();
-        ++halos_added_;
-    }
-    gl::check("atmosphere pass (" + m.parameters().name + ")");
 }
 
 }  // namespace cupola

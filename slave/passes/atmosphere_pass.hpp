@@ -32,6 +32,7 @@
 #include "passes/render_pass.hpp"
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
+#include "passes/sphere_screen_bounds.hpp"
 #include "projection/channel_frustum.hpp"
 #include "wire/snapshot.hpp"
 
@@ -65,13 +66,23 @@ private:
 // four side planes through the camera: conservative (a sphere near a corner may be kept).
 bool sphere_outside_frustum(const ChannelFrustum& frustum, const glm::dvec3& center_channel_m, double radius_m);
 
+// What a draw adds to the look-up besides the sky: the glare's halo, the planet's surface.
+struct AtmosphereDrawExtras {
+    const GlareHaloPass* halo = nullptr;
+    const GlTexture* surface_map = nullptr;
+    glm::mat3 channel_to_body{1.0f};
+    glm::vec3 surface_reflectance{0.0f};  // albedo * tint, as the body pass writes it
+};
+
 class AtmospherePass : public RenderPass {
 public:
     using Atmospheres = std::map<uint16_t, std::unique_ptr<GpuAtmosphere>>;  // by body id
 
     // atmospheres: every body's that has one (not empty). halo: the glare's halo pass, when the
     // scene has one; the nearest atmosphere's draw adds its halo when it covers the whole channel.
-    AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo = nullptr);
+    // bodies: the body pass whose maps a draw that relights a surface itself takes (draws_surface).
+    AtmospherePass(Atmospheres atmospheres, const EclipseShadowUniforms& shadows, const GlareHaloPass* halo = nullptr,
+                   const BodyPass* bodies = nullptr);
 
     // In the pass list: one draw per body with an atmosphere whose top-of-atmosphere sphere can
     // touch the frustum, far to near, each over everything drawn so far: reads the G-buffer,
@@ -82,20 +93,28 @@ public:
     void draw(const PassInputs& in, int step) override;
 
     const Atmospheres& atmospheres() const { return atmospheres_; }
-    long draws_run() const { return run_; }            // summed over frames
-    long draws_skipped() const { return skipped_; }    // atmosphere entirely outside the frustum
-    long draws_marched() const { return marched_; }    // drawn by the per-pixel march
-    long sky_view_renders() const;                     // sky-view tables rendered, all bodies
-    long halos_added() const { return halos_added_; }  // draws that added the glare's halo
-    void set_add_halo(bool on) { add_halo_ = on; }     // SceneRenderer::set_halo_with_atmosphere
+    long draws_run() const { return run_; }                   // summed over frames
+    long draws_skipped() const { return skipped_; }           // atmosphere entirely outside the frustum
+    long draws_marched() const { return marched_; }           // drawn by the per-pixel march
+    long sky_view_renders() const;                            // sky-view tables rendered, all bodies
+    long halos_added() const { return halos_added_; }         // draws that added the glare's halo
+    void set_add_halo(bool on) { add_halo_ = on; }            // SceneRenderer::set_halo_with_atmosphere
+    long surfaces_drawn() const { return surfaces_drawn_; }   // draws that drew their planet's surface
+    void set_draw_surfaces(bool on) { draw_surfaces_ = on; }  // SceneRenderer::set_surface_with_atmosphere
+    // Whether this frame's draw of the planet's atmosphere draws its surface too, so the body pass
+    // need not: the look-up, the camera inside the air with nothing else in it, no eclipse shadow
+    // on the planet, and a map. The ground's reflectance then comes from the map in the same draw
+    // (shared/sphere_view.glsl, body_map_uv) instead of the G-buffer.
+    bool draws_surface(const FrameContext& frame, const FrameBody& planet) const;
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.
-    // geometry_in_air: another body meets the shell (its pixels are marched). halo: a glare halo
-    // to add in the same draw (the look-up only; then it is marked composited), or null.
+    // geometry_in_air: another body meets the shell (its pixels are marched). extras: a glare halo
+    // to add in the same draw (the look-up only; then it is marked composited), the surface to
+    // draw (the look-up only: draws_surface must have said so).
     void draw(const ChannelView& view, GpuAtmosphere& atmosphere, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
-              const shading::EclipseCasters& casters, bool geometry_in_air = true, const GlareHaloPass* halo = nullptr);
+              const shading::EclipseCasters& casters, bool geometry_in_air = true, AtmosphereDrawExtras extras = {});
 
 private:
     struct Layer {
@@ -105,25 +124,35 @@ private:
     };
     // The program for this draw: the look-up, or the march (set up with its own uniforms).
     // table_in: the sky-view table's (camera distance, Sun zenith cosine).
-    // halo: add the glare halo if the look-up is chosen (then set to the halo, else null).
+    // extras: added if the look-up is chosen (else cleared). half: 0 the whole draw, 1 its sky, 2
+    // its ground with the planet's surface (extras.surface_map).
     const GlProgram& choose_program(GpuAtmosphere& atmosphere, const glm::vec2& table_in,
                                     const shading::EclipseCasters& casters, bool geometry_in_air,
-                                    const GlareHaloPass*& halo);
+                                    AtmosphereDrawExtras& extras, int half);
+    // What every draw of a layer sets: the view, the planet, the Sun, the tables, the G-buffer.
+    void set_draw_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm, const SphereView& sphere,
+                           double solar_scale, const glm::dvec3& sun_dir, const GlTexture& geometry,
+                           const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
+    // Blends one draw over `cover` within the scissor r (dual-source: colour = add + colour * factor).
+    void blend_draw(const GlProgram& p, const ChannelView& view, const PixelRect& r, const SphereView& cover);
+    // The extras of layer `step`: its halo (halo_for) and surface (draws_surface).
+    AtmosphereDrawExtras extras_for(int step) const;
     // The look-up program of a variant (bits: outside, geometry in the air, illustrative, glare
-    // halo added), compiled on first use.
+    // halo added, the ground half with the surface, the sky half), compiled on first use.
     const GlProgram& lookup_program(int variant);
     // The glare halo the draw of layer `step` adds: the nearest layer's, when it covers the channel.
     const GlareHaloPass* halo_for(int step) const;
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
     GlProgram program_;
-    std::unique_ptr<GlProgram> lookup_programs_[16];
+    std::unique_ptr<GlProgram> lookup_programs_[64];
     const GlareHaloPass* halo_;
+    const BodyPass* bodies_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws
-    long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0;
-    bool add_halo_ = true;
+    long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0, surfaces_drawn_ = 0;
+    bool add_halo_ = true, draw_surfaces_ = true;
 };
 
 }  // namespace cupola

@@ -23,6 +23,15 @@ BodyPass::BodyPass(const SceneConfig& scene)
     }
 }
 
+const GlTexture* BodyPass::texture(uint16_t body_id) const {
+    const auto t = textures_.find(body_id);
+    return t == textures_.end() ? nullptr : t->second.get();
+}
+
+glm::mat3 BodyPass::channel_to_body(const ChannelView& view, const BodyState& state) {
+    return glm::mat3(glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world);
+}
+
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
                     const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
     const auto tex = textures_.find(body.id);
@@ -31,11 +40,10 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     const double d_sun = glm::length(to_sun);
     const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
     const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
-    const glm::dmat3 channel_to_body = glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world;
 
     const GlProgram& program = casters.count > 0 && !body.atmosphere.present ? shadowed_ : plain_;
     program.use();
-    program.set("u_channel_to_body", glm::mat3(channel_to_body));
+    program.set("u_channel_to_body", channel_to_body(view, state));
     program.set("u_sun_dir", glm::vec3(sun_dir));
     program.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
     program.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));

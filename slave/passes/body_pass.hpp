@@ -28,6 +28,10 @@ public:
     // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
+    // A body's map (linear RGB), or null for a body without one.
+    const GlTexture* texture(uint16_t body_id) const;
+    // The matrix body.frag takes the map's coordinates with (shared/sphere_view.glsl, body_map_uv).
+    static glm::mat3 channel_to_body(const ChannelView& view, const BodyState& state);
 
 private:
     // With eclipse shadows (a body without an atmosphere, in a shadow) and without: the atmosphere

@@ -1,5 +1,7 @@
 #include "passes/painter_pass.hpp"
 
+#include "passes/atmosphere_pass.hpp"
+
 namespace cupola {
 
 PainterPass::PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows)
@@ -15,7 +17,7 @@ void PainterPass::draw(const PassInputs&, int) {
     for (const FrameBody& it : f.far_to_near) {
         if (it.body->kind == BodyKind::Star)
             sun_.draw(f.view, *it.body, it.sphere);
-        else
+        else if (!atmosphere_ || !atmosphere_->draws_surface(f, it))
             bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id));
     }
 }

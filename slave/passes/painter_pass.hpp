@@ -13,6 +13,8 @@
 
 namespace cupola {
 
+class AtmospherePass;
+
 class PainterPass : public RenderPass {
 public:
     PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows);
@@ -24,12 +26,16 @@ public:
 
     // The planets' and moons' drawer, which the glare probe draws the occluders with.
     BodyPass& bodies() { return bodies_; }
+    // Bodies whose surface the atmosphere pass draws itself this frame (AtmospherePass::
+    // draws_surface) are not drawn here. Set once the atmosphere pass exists (or never).
+    void set_surface_drawer(const AtmospherePass* atmosphere) { atmosphere_ = atmosphere; }
 
 private:
     const EclipseShadowUniforms& shadows_;
     SunPass sun_;
     BodyPass bodies_;
     const FrameContext* frame_ = nullptr;
+    const AtmospherePass* atmosphere_ = nullptr;
 };
 
 }  // namespace cupola

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace cupola {
 
@@ -29,6 +30,19 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
     // The silhouette cone's half-angle; asin loses precision near 1, so from the complement.
     const double alpha = std::atan2(s.sin_alpha, std::sqrt((1.0 - s.sin_alpha) * (1.0 + s.sin_alpha)));
     const CapCover c = cap_cover(s.center_dir, alpha, SphereView::kCoverMargin_px * pixel_angle_rad(*view.frustum));
+    if (!c.valid) return s;
+    for (size_t i = 0; i < c.directions.size(); ++i) s.fan[i] = glm::vec3(c.directions[i]);
+    s.cover = SphereView::Cover::Fan;
+    return s;
+}
+
+SphereView complement_cover(const ChannelView& view, const SphereView& sphere) {
+    SphereView s;
+    s.cover = SphereView::Cover::Viewport;
+    if (!(sphere.sin_alpha < 1.0)) return s;
+    const double alpha = std::atan2(sphere.sin_alpha, std::sqrt((1.0 - sphere.sin_alpha) * (1.0 + sphere.sin_alpha)));
+    const CapCover c = cap_cover(-sphere.center_dir, std::numbers::pi - alpha,
+                                 SphereView::kCoverMargin_px * pixel_angle_rad(*view.frustum));
     if (!c.valid) return s;
     for (size_t i = 0; i < c.directions.size(); ++i) s.fan[i] = glm::vec3(c.directions[i]);
     s.cover = SphereView::Cover::Fan;

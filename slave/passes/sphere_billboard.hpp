@@ -33,6 +33,11 @@ struct SphereView {
 
 SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_world_m, double radius_m);
 
+// The cover of the directions that miss the sphere (and 2 px more): the cap of pi - alpha around
+// the direction away from its centre; the viewport when that is (nearly) every direction or the
+// camera is inside.
+SphereView complement_cover(const ChannelView& view, const SphereView& sphere);
+
 // (d, R, d - R, d + R) in metres, differences taken in double: what a shader needs to get the
 // camera-to-hit distance without cancellation (sphere_hit_distance in body.frag).
 glm::vec4 sphere_distances(const SphereView& sphere);

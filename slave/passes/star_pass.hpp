@@ -27,7 +27,8 @@ public:
     // Adds the stars brighter than magnitude_limit into the bound framebuffer, each over the
     // pixels where its PSF can reach kMinDisplay at this exposure (stars.vert; exposure <= 0:
     // the PSF out to kFixedReachSigma for every star). A star whose sprite lies wholly behind the
-    // occluder (which the body pass then paints over, opaque) is not drawn.
+    // occluder (which the body pass, or its atmosphere relighting the ground, then paints over,
+    // opaque) is not drawn.
     void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0, StarOccluder occluder = {});
     // The largest body on screen of a frame, not a star and not around the camera.
     static StarOccluder largest_occluder(const FrameContext& frame);
