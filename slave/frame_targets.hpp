@@ -6,6 +6,7 @@
 // so no pass samples a texture attached to the framebuffer it draws into); a pass that only
 // writes colour (additive) draws into the colour so far. The G-buffer belongs with colour A, so
 // no pass may write it once a pass has read the colour (check_order).
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -22,7 +23,10 @@ public:
 
     // Binds the scene target and clears it: colour (0, 0, 0, 1), G-buffer distance -1 (nothing
     // drawn); colour A is the colour so far.
-    void begin_frame();
+    // geometry: clear the G-buffer too (some pass reads it this frame); else it keeps whatever was
+    // drawn into it before and no pass may read it.
+    void begin_frame(bool geometry = true);
+    uint64_t geometry_clears() const { return geometry_clears_; }
     // Binds what a pass with these reads and writes draws into (unless it is bound already) and
     // returns what it samples. A pass that writes none of the frame's targets binds its own.
     PassInputs bind_for(const PassIo& io);
@@ -44,6 +48,7 @@ private:
     GlFramebuffer scene_, a_, b_;  // scene_: colour A and the G-buffer
     const GlFramebuffer* current_ = &a_;
     const GlFramebuffer* bound_ = nullptr;
+    uint64_t geometry_clears_ = 0;
 };
 
 }  // namespace cupola

@@ -265,13 +265,18 @@ Image SceneRenderer::read_back() {
 
 uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
 
+uint64_t SceneRenderer::geometry_clears() const { return impl_->targets.geometry_clears(); }
+
 void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
     if (m.timing) m.timings = FrameTimings{};
     const FrameContext frame = m.frame_context(snap);
-    m.targets.begin_frame();
-    for (size_t i = m.first_pass(snap); i < m.passes.size(); ++i) {
+    const size_t first = m.first_pass(snap);
+    const bool geometry_read = std::any_of(m.passes.begin() + static_cast<std::ptrdiff_t>(first), m.passes.end(),
+                                           [&](const auto& p) { return p->reads_geometry_in(frame); });
+    m.targets.begin_frame(geometry_read);
+    for (size_t i = first; i < m.passes.size(); ++i) {
         RenderPass* pass = m.passes[i].get();
         const auto pass_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
         const PassIo io = pass->io();

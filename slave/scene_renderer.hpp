@@ -55,6 +55,8 @@ public:
     Image read_back();
     // How many times a frame was read back since construction.
     uint64_t read_backs() const;
+    // Frames whose G-buffer was cleared: those in which some pass reads it.
+    uint64_t geometry_clears() const;
     AtmosphereStats atmosphere_stats() const;
     // The newest finished glare occlusion-query results (for the frame report): after render()
     // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.

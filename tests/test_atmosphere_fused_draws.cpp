@@ -4,11 +4,13 @@
 // the body pass (SKY_HALF, the draw split into sky and ground). On a real headless EGL context
 // (llvmpipe on CI), the earth-moon scene from the ground by day with the Sun in view gives the
 // same image each way, within float rounding; from orbit, where the atmosphere covers only its
-// cap, the glare pass draws the halo and the body pass the surface.
+// cap, the glare pass draws the halo and the body pass the surface. The G-buffer is cleared only
+// in a frame where some pass reads it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <glm/gtc/quaternion.hpp>
 
@@ -81,12 +83,13 @@ Snapshot snapshot(const SceneConfig& sc, const ClusterConfig& cl, double altitud
 // Renders the snapshot with the halo added by the atmosphere or not, the surface drawn by it or
 // not; returns the image and the renderer's atmosphere counters.
 Image render(const SceneConfig& sc, const ClusterConfig& cl, const Snapshot& s, bool halo, bool surface,
-             AtmosphereStats& stats) {
+             AtmosphereStats& stats, uint64_t* geometry_clears = nullptr) {
     SceneRenderer r(cl, cl.channels[0], sc);
     r.set_halo_with_atmosphere(halo);
     r.set_surface_with_atmosphere(surface);
     Image img = r.render(s);
     stats = r.atmosphere_stats();
+    if (geometry_clears) *geometry_clears = r.geometry_clears();
     return img;
 }
 
@@ -133,10 +136,14 @@ TEST(AtmosphereFusedDraws, TheSurfaceDrawnByTheAtmosphereIsTheBodyPasss) {
     const ClusterConfig& cl = one_channel();
     const Snapshot s = snapshot(sc, cl, 2.0, 20.0);  // the ground across the lower part
     AtmosphereStats fused_stats, own_stats;
-    const Image fused = render(sc, cl, s, true, true, fused_stats);
-    const Image own = render(sc, cl, s, true, false, own_stats);
+    uint64_t fused_clears = 0, own_clears = 0;
+    const Image fused = render(sc, cl, s, true, true, fused_stats, &fused_clears);
+    const Image own = render(sc, cl, s, true, false, own_stats, &own_clears);
     EXPECT_EQ(fused_stats.surfaces_drawn, 1);
     EXPECT_EQ(own_stats.surfaces_drawn, 0);
+    // Nothing reads the G-buffer when the atmosphere draws the surface: it is not cleared.
+    EXPECT_EQ(fused_clears, 0u);
+    EXPECT_EQ(own_clears, 1u);
     EXPECT_LE(relative_difference(own, fused), 1e-5f);
     // The map is what was drawn: with the Moon's map on the Earth the ground changes, the sky not.
     SceneConfig other = sc;
@@ -161,7 +168,9 @@ TEST(AtmosphereFusedDraws, FromOrbitTheGlareAndBodyPassesDrawTheirOwn) {
     const SceneConfig& sc = scene();
     const ClusterConfig& cl = one_channel();
     AtmosphereStats stats;
-    render(sc, cl, snapshot(sc, cl, 400.0e3, 0.0), true, true, stats);
+    uint64_t clears = 0;
+    render(sc, cl, snapshot(sc, cl, 400.0e3, 0.0), true, true, stats, &clears);
     EXPECT_EQ(stats.halos_added, 0);     // the atmosphere seen from outside covers only its cap
     EXPECT_EQ(stats.surfaces_drawn, 0);  // and draws no surface
+    EXPECT_EQ(clears, 1u);               // but reads the G-buffer, which is cleared
 }

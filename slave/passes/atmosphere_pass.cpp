@@ -194,6 +194,12 @@ bool AtmospherePass::draws_surface(const FrameContext& f, const FrameBody& plane
     return !other_body_in_shell(f, planet, a->second->top_radius_m());
 }
 
+bool AtmospherePass::reads_geometry_in(const FrameContext& f) const {
+    for (const FrameBody& b : f.far_to_near)
+        if (atmospheres_.count(b.body->id) && !draws_surface(f, b)) return true;
+    return false;
+}
+
 AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     AtmosphereDrawExtras e;
     e.halo = halo_for(step);

@@ -106,6 +106,8 @@ public:
     // on the planet, and a map. The ground's reflectance then comes from the map in the same draw
     // (shared/sphere_view.glsl, body_map_uv) instead of the G-buffer.
     bool draws_surface(const FrameContext& frame, const FrameBody& planet) const;
+    // The G-buffer is read unless every planet with an atmosphere draws its own surface.
+    bool reads_geometry_in(const FrameContext& frame) const override;
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.

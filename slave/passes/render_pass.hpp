@@ -40,6 +40,9 @@ public:
     virtual void draw(const PassInputs& in, int step) = 0;
     // After the frame's glFinish: takes results back from the GPU (occlusion queries).
     virtual void frame_finished() {}
+    // Whether the pass samples the G-buffer in this frame (before prepare(); conservative): when
+    // no pass does, the frame's G-buffer is not cleared. By default what io() declares.
+    virtual bool reads_geometry_in(const FrameContext&) const { return io().reads_geometry; }
 };
 
 }  // namespace cupola
