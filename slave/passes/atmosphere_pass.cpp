@@ -178,10 +178,9 @@ int AtmospherePass::prepare(const FrameContext& frame) {
 
 const GlareHaloPass* AtmospherePass::halo_for(int step) const {
     if (!halo_ || !add_halo_ || step + 1 != static_cast<int>(layers_.size()) || !halo_->has_halo()) return nullptr;
+    // The camera inside the shell: its draw covers the viewport (make_sphere_view's rule).
     const Layer& l = layers_.back();
-    const bool covers = make_sphere_view(frame_->view, l.body->state->position_m, l.atmosphere->top_radius_m())
-                            .fullscreen();  // the camera inside the shell: every pixel is drawn
-    return covers ? halo_ : nullptr;
+    return l.body->sphere.distance_m <= l.atmosphere->top_radius_m() ? halo_ : nullptr;
 }
 
 bool AtmospherePass::draws_surface(const FrameContext& f, const FrameBody& planet) const {

@@ -31,9 +31,9 @@ CapCover cap_cover(const glm::dvec3& axis, double cone_rad, double margin_rad) {
     // `inner` (tan(inner) = tan(rim) cos(half step)). Past 90 degrees the rim points are the nearest.
     c.rim_rad = std::max(inner, std::atan2(std::sin(inner), std::cos(inner) * std::cos(kHalfStep_rad)));
     if (!(c.rim_rad <= kMaxRim_rad)) return c;
-    glm::dvec3 e1, e2;
-    normal_basis(glm::normalize(axis), e1, e2);
     const glm::dvec3 a = glm::normalize(axis);
+    glm::dvec3 e1, e2;
+    normal_basis(a, e1, e2);
     c.directions[0] = a;
     const double s = std::sin(c.rim_rad), co = std::cos(c.rim_rad);
     for (int i = 0; i <= kCapCoverRim; ++i) {

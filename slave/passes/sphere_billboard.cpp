@@ -6,10 +6,22 @@
 
 namespace cupola {
 
-namespace {
-// The largest angle a pixel spans: at the centre of the tangent plane.
 double pixel_angle_rad(const ChannelFrustum& f) {
     return std::max((f.tan_left() + f.tan_right()) / f.width(), (f.tan_down() + f.tan_up()) / f.height());
+}
+
+double sphere_angular_radius_rad(double sin_alpha) {
+    return std::atan2(sin_alpha, std::sqrt((1.0 - sin_alpha) * (1.0 + sin_alpha)));
+}
+
+namespace {
+// The fan over the cone of cone_rad around a unit axis plus the cover margin, or the viewport
+// when no fan covers it.
+void set_fan_cover(SphereView& s, const ChannelView& view, const glm::dvec3& axis, double cone_rad) {
+    const CapCover c = cap_cover(axis, cone_rad, SphereView::kCoverMargin_px * pixel_angle_rad(*view.frustum));
+    s.cover = c.valid ? SphereView::Cover::Fan : SphereView::Cover::Viewport;
+    if (c.valid)
+        for (size_t i = 0; i < c.directions.size(); ++i) s.fan[i] = glm::vec3(c.directions[i]);
 }
 }  // namespace
 
@@ -27,12 +39,7 @@ SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_wo
     s.center_dir = rel / s.distance_m;
     s.sin_alpha = radius_m / s.distance_m;
     if (s.sin_alpha >= 1.0) return s;  // inside or on the sphere: every direction may show it
-    // The silhouette cone's half-angle; asin loses precision near 1, so from the complement.
-    const double alpha = std::atan2(s.sin_alpha, std::sqrt((1.0 - s.sin_alpha) * (1.0 + s.sin_alpha)));
-    const CapCover c = cap_cover(s.center_dir, alpha, SphereView::kCoverMargin_px * pixel_angle_rad(*view.frustum));
-    if (!c.valid) return s;
-    for (size_t i = 0; i < c.directions.size(); ++i) s.fan[i] = glm::vec3(c.directions[i]);
-    s.cover = SphereView::Cover::Fan;
+    set_fan_cover(s, view, s.center_dir, sphere_angular_radius_rad(s.sin_alpha));
     return s;
 }
 
@@ -40,12 +47,7 @@ SphereView complement_cover(const ChannelView& view, const SphereView& sphere) {
     SphereView s;
     s.cover = SphereView::Cover::Viewport;
     if (!(sphere.sin_alpha < 1.0)) return s;
-    const double alpha = std::atan2(sphere.sin_alpha, std::sqrt((1.0 - sphere.sin_alpha) * (1.0 + sphere.sin_alpha)));
-    const CapCover c = cap_cover(-sphere.center_dir, std::numbers::pi - alpha,
-                                 SphereView::kCoverMargin_px * pixel_angle_rad(*view.frustum));
-    if (!c.valid) return s;
-    for (size_t i = 0; i < c.directions.size(); ++i) s.fan[i] = glm::vec3(c.directions[i]);
-    s.cover = SphereView::Cover::Fan;
+    set_fan_cover(s, view, -sphere.center_dir, std::numbers::pi - sphere_angular_radius_rad(sphere.sin_alpha));
     return s;
 }
 

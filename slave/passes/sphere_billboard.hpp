@@ -33,6 +33,13 @@ struct SphereView {
 
 SphereView make_sphere_view(const ChannelView& view, const glm::dvec3& center_world_m, double radius_m);
 
+// The largest angle a pixel of the channel spans: at the centre of its tangent plane.
+double pixel_angle_rad(const ChannelFrustum& frustum);
+
+// The half-angle of a sphere's silhouette cone from sin_alpha = R / d (< 1); asin loses precision
+// near 1, so it is taken from the complement.
+double sphere_angular_radius_rad(double sin_alpha);
+
 // The cover of the directions that miss the sphere (and 2 px more): the cap of pi - alpha around
 // the direction away from its centre; the viewport when that is (nearly) every direction or the
 // camera is inside.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "passes/sphere_billboard.hpp"
+
 namespace cupola {
 
 StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
@@ -47,7 +49,7 @@ StarOccluder StarPass::largest_occluder(const FrameContext& frame) {
         if (b.body->kind == BodyKind::Star || !(s > best) || !(s < 1.0)) continue;
         best = s;
         o.center_dir = glm::vec3(b.sphere.center_dir);
-        o.radius_rad = static_cast<float>(std::atan2(s, std::sqrt((1.0 - s) * (1.0 + s))));
+        o.radius_rad = static_cast<float>(sphere_angular_radius_rad(s));
     }
     return o;
 }
@@ -84,8 +86,7 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     program_.set("u_occluder_dir", occluder.center_dir);
     program_.set("u_occluder_rad", occluder.radius_rad);
     // Two pixels (at the centre, where a pixel spans the widest angle) beyond a star's reach.
-    program_.set("u_pixel_rad", static_cast<float>(std::max((f.tan_left() + f.tan_right()) / f.width(),
-                                                            (f.tan_down() + f.tan_up()) / f.height())));
+    program_.set("u_pixel_rad", static_cast<float>(pixel_angle_rad(f)));
     program_.set("u_tangents", view.tangents());
     program_.set("u_size", view.size());
     glEnable(GL_PROGRAM_POINT_SIZE);
