@@ -30,8 +30,11 @@ constexpr int kWidth = 96, kHeight = 64;
 
 // The Sun to the side and a white moon ahead: a half-lit disc, so the frame holds a smooth ramp
 // of values from black to bright (every encoding step is exercised, not just 0 and 255).
+// One folder per test case: ctest runs the cases as parallel processes, and a shared folder,
+// emptied as each starts, lost one case's texture to another's start.
 SceneConfig moon_scene() {
-    const std::string dir = test::scratch_dir("OutputSinks_scene");
+    const std::string dir = test::scratch_dir(std::string("OutputSinks_scene_") +
+                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
     for (int i = 0; i < 8; ++i) hdr += std::string("\x80\x80\x80\x81", 4);  // RGBE 1.0
     test::write_text(dir + "/white.hdr", hdr);
