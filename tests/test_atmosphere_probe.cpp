@@ -15,9 +15,12 @@ namespace {
 std::pair<int, std::string> run(const std::string& cmd) { return test::run_shell(cmd); }
 
 std::string probe(const std::string& body = "earth") {
-    return "CUPOLA_CACHE_DIR=" + test::scratch_dir("atmosphere_probe_cache") + " " +
-           test::bin_path("cupola-atmosphere") + " --scene " + test::source_path("configs/scenes/earth-physical.json") +
-           " --body " + body + " --paths 64";
+    // A cache of each test case's own (the cases run as parallel processes).
+    return "CUPOLA_CACHE_DIR=" +
+           test::scratch_dir(std::string("atmosphere_probe_cache_") +
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+           " " + test::bin_path("cupola-atmosphere") + " --scene " +
+           test::source_path("configs/scenes/earth-physical.json") + " --body " + body + " --paths 64";
 }
 }  // namespace
 

@@ -38,7 +38,10 @@ const glm::vec3 kAdd(0.25f, 0.5f, 1.0f);
 EglContext& context() { return test::headless_gl("RenderPasses"); }
 
 SceneConfig make_scene(bool glare) {
-    const std::string dir = test::scratch_dir(glare ? "RenderPasses_glare" : "RenderPasses");
+    // One folder per test case: ctest runs the cases as parallel processes, and a shared folder,
+    // emptied as each starts, could lose one case's files to another's start.
+    const std::string dir = test::scratch_dir(std::string(glare ? "RenderPasses_glare_" : "RenderPasses_") +
+                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
     for (int i = 0; i < 8; ++i) hdr += std::string("\x80\x80\x80\x81", 4);  // RGBE 1.0
     test::write_text(dir + "/white.hdr", hdr);
