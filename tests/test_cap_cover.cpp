@@ -88,7 +88,7 @@ TEST(CapCover, ANearlyFullSphereOfDirectionsHasNoFan) {
 namespace {
 // Renders the cover of a sphere (centre in the channel frame, metres) into a 256 x 192 channel and
 // checks it against the pixels whose rays meet the sphere. Returns the covered pixel count. Writes
-// build/test-tmp/CapCover_<name>/<name>.png to look at: blue where the ray meets the sphere, red where
+// build/test-tmp/CapCover_<name>-<hash>/<name>.png to look at: blue where the ray meets the sphere, red where
 // the fan covers a pixel that does not show it, black elsewhere.
 int check_cover(const std::string& name, const glm::dvec3& center_m, double radius_m, int& hits) {
     context();

@@ -1,5 +1,5 @@
 // Rendered eclipse checks: real loopback runs (master + slave processes, UDP, EGL,
-// EXR and PNG files, stitched domemasters kept under build/test-tmp/EclipseRender_*/out/dome).
+// EXR and PNG files, stitched domemasters kept under build/test-tmp/EclipseRender_*-<hash>/out/dome).
 //   - From the ground at the greatest-eclipse point of 2006-03-29 (the point and instant come
 //     from our own prediction, scene/eclipse_geometry.hpp): the sky at 90 % obscuration and in
 //     totality, against the same sky with shadows off. The sky's mean luminance follows the

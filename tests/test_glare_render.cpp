@@ -1,6 +1,6 @@
 // Sun glare across channel seams: real loopback runs (master + slave processes, UDP,
 // EGL, occlusion queries, EXR frames, stitched domemasters kept under
-// build/test-tmp/GlareRender_*/out/dome).
+// build/test-tmp/GlareRender_*-<hash>/out/dome).
 //   - Seam: the Sun exactly on the edge between two channels and on the corner of three; the
 //     stitched domemaster's glare matches one wide channel's within 2 % of its energy with no
 //     step along the seams -- and the naive per-channel visibility fails that same check.

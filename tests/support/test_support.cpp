@@ -2,6 +2,9 @@
 
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -22,8 +25,25 @@ const bool kCacheInBuildTree = [] {
 }();
 }  // namespace
 
+namespace {
+// ctest runs each case of a program as its own process, in parallel. Two cases that ask for the
+// same folder name must not empty each other's folder, so the name gets a short suffix from the
+// running case's full name (FNV-1a, 32 bits). It stays short: a Unix socket path is limited to
+// 107 bytes, and some tests put the control socket in their folder.
+std::string test_case_suffix() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    if (info == nullptr) return "";
+    const std::string full = std::string(info->test_suite_name()) + "." + info->name();
+    std::uint32_t h = 2166136261u;
+    for (const unsigned char c : full) h = (h ^ c) * 16777619u;
+    char buf[10];
+    std::snprintf(buf, sizeof buf, "-%08x", h);
+    return buf;
+}
+}  // namespace
+
 std::string scratch_dir(const std::string& name) {
-    fs::path p = fs::path(CUPOLA_TEST_TMP) / name;
+    fs::path p = fs::path(CUPOLA_TEST_TMP) / (name + test_case_suffix());
     fs::remove_all(p);
     fs::create_directories(p);
     return p.string();

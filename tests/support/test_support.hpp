@@ -6,7 +6,8 @@
 
 namespace cupola::test {
 
-// A fresh, empty folder under the build tree named after the test (removed and re-created).
+// A fresh, empty folder under the build tree (removed and re-created), named `name` plus a short
+// hash of the running test case, so parallel cases never share one: <build>/test-tmp/<name>-<hash>.
 std::string scratch_dir(const std::string& name);
 
 // Absolute path of a file in the source tree, e.g. source_path("configs/dome-4ch.json").
