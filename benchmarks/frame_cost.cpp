@@ -13,7 +13,7 @@
 //    "trivial_ms", "ratio", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
-//    "surface_separate"}
+//    "surface_separate", "stars_ignore_sky"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end). With
 // --read-back every frame is also read back as RGBA32F (what a files sink needs) and that is
@@ -26,6 +26,7 @@
 // angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
+//                        [--stars-ignore-sky]
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -188,7 +189,7 @@ double median(std::vector<double> v) {
 
 struct Options {
     int size = 1024, frames = 10, warm_up = 2, device = -1;
-    bool read_back = false, halo_separate = false, surface_separate = false;
+    bool read_back = false, halo_separate = false, surface_separate = false, stars_ignore_sky = false;
     double sun_step_deg = 0.0;
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
@@ -320,6 +321,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["sun_step_deg"] = o.sun_step_deg;
     j["halo_separate"] = o.halo_separate;
     j["surface_separate"] = o.surface_separate;
+    j["stars_ignore_sky"] = o.stars_ignore_sky;
     return j;
 }
 
@@ -360,6 +362,7 @@ int run(const Options& o) {
     SceneRenderer r(cluster, cluster.channels[0], scene);
     r.set_halo_with_atmosphere(!o.halo_separate);
     r.set_surface_with_atmosphere(!o.surface_separate);
+    r.set_stars_see_the_sky(!o.stars_ignore_sky);
     TrivialPass trivial(o.size);
     for (const ViewSpec* v : views) {
         const Snapshot snap = view_snapshot(*v, scene, cluster, exposure, glare.get());
@@ -389,6 +392,8 @@ int main(int argc, char** argv) {
                  "the body pass draws the Earth's surface, never the atmosphere (for comparison)");
     app.add_flag("--halo-separate", o.halo_separate,
                  "the glare pass draws the glare's halo on its own, never the atmosphere (for comparison)");
+    app.add_flag("--stars-ignore-sky", o.stars_ignore_sky,
+                 "every star the exposure can show is drawn, the sky behind it not considered (for comparison)");
     app.add_option("--sun-step-deg", o.sun_step_deg,
                    "raise the Sun by this much every frame (0: a static view; the sky-view table is re-rendered "
                    "when the Sun's zenith angle crosses a step of its grid)");

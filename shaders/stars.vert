@@ -5,9 +5,14 @@
 // slave/passes/star_pass.hpp), so a faint star's sprite is small and a bright one's large. The
 // reach is an angle from cluster-wide values (flux, sigma, the snapshot's exposure): every
 // channel covers the same directions. The fragment shader integrates the PSF over each pixel.
+// With a sky (u_sky_on), a star shows only as far as the eye could see it against the sky behind
+// it (shared/star_visibility.glsl, Schaefer's threshold): its weight, judged in the world frame
+// from the sky-view table every channel shares (star_weights.frag), so a star is seen alike on
+// every channel.
 layout(location = 0) in vec3 a_dir;   // unit direction, world frame
 layout(location = 1) in float a_flux; // zero_mag_flux * 10^(-0.4 V), scene units x sr
 layout(location = 2) in float a_bv;   // B-V colour index
+layout(location = 3) in float a_sky_weight;  // slave/passes/star_sky_weights.hpp
 
 uniform mat3 u_world_to_channel;
 uniform mat4 u_projection;      // the channel frustum widened by a guard band
@@ -19,14 +24,22 @@ uniform float u_fixed_reach_sigma;
 uniform vec3 u_occluder_dir;    // unit, channel frame: the largest body on screen
 uniform float u_occluder_rad;   // its angular radius; <= 0: none
 uniform float u_pixel_rad;      // the widest angle a pixel spans
+uniform int u_sky_on;           // 0: no sky to judge the stars by
 
 flat out vec3 v_color;    // flux times the unit-luminance B-V colour
 flat out vec2 v_t;        // tangent-plane point of the star
 flat out vec2 v_sigma_t;  // tangent-plane sigmas of its PSF
 
+// How much of the star the eye sees against the sky (1 without one).
+float sky_weight() {
+    if (u_sky_on == 0) return 1.0;
+    return a_sky_weight;
+}
+
 void main() {
     vec3 d = u_world_to_channel * a_dir;
-    v_color = a_flux * bv_to_linear_srgb(a_bv);
+    float weight = sky_weight();
+    v_color = weight * a_flux * bv_to_linear_srgb(a_bv);
     gl_Position = u_projection * vec4(d, 1.0);
     float zc = min(d.z, -1e-3);
     float tx = d.x / -zc;
@@ -46,7 +59,8 @@ void main() {
     // or the atmosphere relighting the ground, paints over it, so it is not drawn (a point outside
     // the clip volume is discarded).
     float inside_rad = u_occluder_rad - reach_sigma * u_sigma_rad - 2.0 * u_pixel_rad;
-    if (u_occluder_rad > 0.0 && inside_rad > 0.0 && dot(d, u_occluder_dir) > cos(inside_rad)) {
+    // Not seen against the sky: not drawn either.
+    if (weight <= 0.0 || (u_occluder_rad > 0.0 && inside_rad > 0.0 && dot(d, u_occluder_dir) > cos(inside_rad))) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     }
 }

@@ -74,8 +74,8 @@ struct SceneRenderer::Impl {
     // targets each draw goes to follow from that (FrameTargets).
     void build_pipeline(const ClusterConfig& cluster, const ChannelConfig& ch, AtmospherePass::Atmospheres atm) {
         // Stars: colour, additive.
-        add(std::make_unique<StarPass>(scene.stars,
-                                       load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit)));
+        stars = &add(std::make_unique<StarPass>(scene.stars,
+                                                load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit)));
         // The Sun and the bodies, far to near: colour and G-buffer.
         PainterPass& painter = add(std::make_unique<PainterPass>(scene, shadows));
         // The glare probe, into its own depth target: after every occluder, before what does not
@@ -91,6 +91,7 @@ struct SceneRenderer::Impl {
         if (!atm.empty()) {
             atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo, &painter.bodies()));
             painter.set_surface_drawer(atmosphere);
+            stars->set_sky_source(atmosphere);  // each star judged against the sky behind it
         }
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
@@ -121,7 +122,8 @@ struct SceneRenderer::Impl {
     std::vector<std::unique_ptr<RenderPass>> passes;
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere
-    PatternPass* pattern = nullptr;        // the passes before it draw the scene
+    StarPass* stars = nullptr;
+    PatternPass* pattern = nullptr;  // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
     uint64_t read_backs = 0;  // frames read back (read_back())
     bool timing = false;      // set_pass_timing()
@@ -253,6 +255,8 @@ void SceneRenderer::set_halo_with_atmosphere(bool on) {
 void SceneRenderer::set_surface_with_atmosphere(bool on) {
     if (impl_->atmosphere) impl_->atmosphere->set_draw_surfaces(on);
 }
+
+void SceneRenderer::set_stars_see_the_sky(bool on) { impl_->stars->set_sky_source(on ? impl_->atmosphere : nullptr); }
 
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 

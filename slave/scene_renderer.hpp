@@ -73,6 +73,10 @@ public:
     // by default; AtmospherePass::draws_surface); off, the body pass draws it into the G-buffer
     // (the same image again: tests/test_atmosphere_fused_draws.cpp).
     void set_surface_with_atmosphere(bool on);
+    // Whether each star is judged against the sky behind it (on by default; StarPass,
+    // shared/star_visibility.glsl); off, the magnitude limits and the exposure alone decide (for
+    // comparison: by day the stars then show over the sky).
+    void set_stars_see_the_sky(bool on);
     // The last frame's timings while pass timing is on (empty before the first timed frame).
     const FrameTimings& last_frame_timings() const;
 

@@ -2,17 +2,26 @@
 // at 2.54e-6 lux) with the master's cluster-wide auto exposure: drowned by the daytime sky,
 // visible at night, and visible -- dimmed by the transmittance -- through the thin rim seen from
 // orbit. Real EGL renders; "visible" is judged on the 8-bit display values the PNG would hold.
+// With a sky-view atmosphere each star shows only as far as the eye could see it against the sky
+// behind it (shaders/shared/star_visibility.glsl): the threshold against Schaefer's relation on
+// the CPU, then every star's light in the renders against the CPU's judgement, by day, in twilight
+// and at night, and a fading star on the edge between two channels.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 
 #include "atmosphere/auto_exposure.hpp"
+#include "atmosphere/production_model.hpp"
+#include "atmosphere/solar_scale.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
+#include "passes/star_sky.hpp"
 #include "scene_renderer.hpp"
+#include "shading/shared_shading.hpp"
 #include "support/headless_gl.hpp"
 #include "support/test_support.hpp"
 
@@ -27,8 +36,10 @@ glm::dvec3 radec_to_vec(double ra, double dec) {
     return {std::cos(dec) * std::cos(ra), std::cos(dec) * std::sin(ra), std::sin(dec)};
 }
 
-// Physical scene; stars (V = 1) at the given world directions.
-SceneConfig make_scene(const std::string& tag, bool atmosphere, const std::vector<glm::dvec3>& stars) {
+// Physical scene; stars at the given world directions, of V = 1 unless `vmag` gives each one's.
+// model: the atmosphere's quality level, "" for none.
+SceneConfig make_scene(const std::string& tag, const std::string& model, const std::vector<glm::dvec3>& stars,
+                       const std::vector<double>& vmag = {}) {
     const std::string dir = test::scratch_dir("AtmosphereStars_" + tag);
     std::string csv = "ra_deg,dec_deg,vmag,bv,name\n";
     for (size_t i = 0; i < stars.size(); ++i) {
@@ -36,11 +47,13 @@ SceneConfig make_scene(const std::string& tag, bool atmosphere, const std::vecto
         char line[160];
         double ra = glm::degrees(std::atan2(v.y, v.x));
         if (ra < 0.0) ra += 360.0;
-        std::snprintf(line, sizeof line, "%.9f,%.9f,1.0,0.6,S%zu\n", ra, glm::degrees(std::asin(v.z)), i);
+        std::snprintf(line, sizeof line, "%.9f,%.9f,%.6f,0.6,S%zu\n", ra, glm::degrees(std::asin(v.z)),
+                      vmag.empty() ? 1.0 : vmag[i], i);
         csv += line;
     }
     test::write_text(dir + "/stars.csv", csv);
-    const std::string atm = atmosphere ? R"(, "atmosphere": { "preset": "earth", "model": "low" })" : "";
+    const std::string atm =
+        model.empty() ? "" : R"(, "atmosphere": { "preset": "earth", "model": ")" + model + R"(" })";
     test::write_text(dir + "/scene.json", R"({ "bodies": [
         { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 2.0e9, "limb_darkening_u": 0.6 },
         { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "albedo": 0.3)" +
@@ -114,7 +127,7 @@ TEST(AtmosphereStars, DrownedAtNoonVisibleAtNight) {
     // Stars around the zenith; the channel looks straight up.
     std::vector<glm::dvec3> stars;
     for (int i = 0; i < 12; ++i) stars.push_back(radec_to_vec(glm::radians(30.0 * i), glm::radians(80.0)));
-    const SceneConfig scene = make_scene("ground", true, stars);
+    const SceneConfig scene = make_scene("ground", "low", stars);
     const ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 30.0, 30.0, 30.0});
     const auto sun_at = [](double zenith_deg) {
         const double z = glm::radians(zenith_deg);
@@ -146,11 +159,11 @@ TEST(AtmosphereStars, SeenThroughTheThinRimFromOrbitDimmedByTheTransmittance) {
         }
     const ClusterConfig cluster = make_cluster({0.0, -glm::degrees(dip), 0.0}, {10.0, 10.0, 6.0, 6.0});
     const Snapshot s = snapshot(h, glm::dvec3(-1.0, 0.0, -0.2));
-    const Pair air = render_pair(cluster, make_scene("rim_air", true, stars), s);
+    const Pair air = render_pair(cluster, make_scene("rim_air", "low", stars), s);
     ClusterConfig fixed = cluster;  // the vacuum render at the same exposure
     const Pair vacuum = [&] {
         context();
-        SceneRenderer r(fixed, fixed.channels[0], make_scene("rim_vacuum", false, stars));
+        SceneRenderer r(fixed, fixed.channels[0], make_scene("rim_vacuum", "", stars));
         Snapshot v = s;
         v.settings.exposure = static_cast<float>(air.exposure);
         Pair p;
@@ -173,4 +186,197 @@ TEST(AtmosphereStars, SeenThroughTheThinRimFromOrbitDimmedByTheTransmittance) {
     EXPECT_LT(through_air, 0.9 * in_vacuum);       // dimmed: the rays cross tens of km of air
     EXPECT_GT(through_air, 0.05 * in_vacuum);      // but not hidden: the rim is thin
     EXPECT_GT(max_display_difference(air), 20.0);  // and visible on the display
+}
+
+namespace {
+namespace at = cupola::atmosphere;
+namespace sh = cupola::shading;
+
+// Schaefer 1990's threshold as the paper writes it: the star's illuminance in foot-candles, the
+// background in nanolamberts (log B < 3.17: the rods' constants).
+double schaefer_limit(double background_cd_m2) {
+    const double b_nl = background_cd_m2 * std::numbers::pi * 1e5;
+    const bool rods = b_nl <= 0.0 || std::log10(b_nl) < 3.17;
+    const double c1 = std::pow(10.0, rods ? -9.8 : -8.35);
+    const double c2 = std::pow(10.0, rods ? -1.9 : -5.9);
+    const double i_fc = c1 * std::pow(1.0 + std::sqrt(c2 * b_nl), 2.0);
+    return -16.57 - 2.5 * std::log10(i_fc);
+}
+
+// A sky of m V-magnitudes per square arcsecond as a luminance: a V = 0 star's 2.54e-6 lux
+// spread over one square arcsecond.
+double sky_cd_m2(double mag_per_arcsec2) {
+    const double arcsec2_sr = std::pow(std::numbers::pi / (180.0 * 3600.0), 2.0);
+    return 2.54e-6 / arcsec2_sr * std::pow(10.0, -0.4 * mag_per_arcsec2);
+}
+}  // namespace
+
+TEST(StarVisibility, TheEyesThresholdIsSchaefersRelation) {
+    double previous = 100.0;
+    for (double lg = -7.0; lg <= 5.0; lg += 0.05) {
+        const double b = std::pow(10.0, lg);
+        const double m = sh::eye_limiting_magnitude(static_cast<float>(b));
+        EXPECT_NEAR(m, schaefer_limit(b), 2e-3) << "background " << b << " cd/m^2";
+        EXPECT_LE(m, previous + 1e-4) << "a brighter sky never shows fainter stars (" << b << " cd/m^2)";
+        previous = m;
+    }
+    EXPECT_NEAR(sh::eye_limiting_magnitude(0.0f), 7.93, 1e-3);  // a black background
+    // A dark site (22 mag/arcsec^2) shows stars to about 6.6; a city sky (18) to 4.0-4.5; the
+    // daytime sky (a few thousand cd/m^2) only the brightest planets.
+    EXPECT_NEAR(sh::eye_limiting_magnitude(static_cast<float>(sky_cd_m2(22.0))), 6.6, 0.1);
+    EXPECT_NEAR(sh::eye_limiting_magnitude(static_cast<float>(sky_cd_m2(18.0))), 4.25, 0.25);
+    const double day = sh::eye_limiting_magnitude(5000.0f);
+    EXPECT_LT(day, -3.5);
+    EXPECT_GT(day, -4.5);
+}
+
+TEST(StarVisibility, AStarFadesInAboveTheThresholdDimmedByTheAirInFront) {
+    const float b = 1.0f;  // cd/m^2 behind the star; the table's value times to_cd_m2 = 1
+    const float limit = sh::eye_limiting_magnitude(b);
+    EXPECT_EQ(sh::star_sky_weight(sh::vec2(-1.0f, 1.0f), 1.0f, 20.0f), 1.0f);  // the ray misses the air
+    EXPECT_EQ(sh::star_sky_weight(sh::vec2(b, 0.0f), 1.0f, -20.0f), 0.0f);     // behind the ground
+    EXPECT_NEAR(sh::star_sky_weight(sh::vec2(b, 1.0f), 1.0f, limit), 0.0f, 1e-4);
+    EXPECT_NEAR(sh::star_sky_weight(sh::vec2(b, 1.0f), 1.0f, limit - 0.25f), 0.5f, 1e-3);
+    EXPECT_NEAR(sh::star_sky_weight(sh::vec2(b, 1.0f), 1.0f, limit - 0.5f), 1.0f, 1e-4);
+    // Transmittance 0.1 is 2.5 magnitudes of extinction.
+    EXPECT_NEAR(sh::star_sky_weight(sh::vec2(b, 0.1f), 1.0f, limit - 2.75f), 0.5f, 1e-3);
+    // The table's value is scaled into cd/m^2: ten times the scale, a brighter sky, a lower limit.
+    EXPECT_LT(sh::star_sky_weight(sh::vec2(b, 1.0f), 10.0f, limit - 0.25f), 0.01f);
+}
+
+namespace {
+glm::dvec3 sun_at_zenith_deg(double zenith_deg) {
+    const double z = glm::radians(zenith_deg);
+    return glm::dvec3(std::sin(z), 0.0, std::cos(z));
+}
+
+// The CPU's judgement of a star, with the shared code and the table the GPU renders for the same
+// camera distance and Sun.
+struct SkyJudge {
+    at::ProductionAtmosphere model;
+    float d_m;
+    sh::vec3 c_hat, sun;
+    float to_cd_m2;
+
+    SkyJudge(const SceneConfig& scene, const Snapshot& s)
+        : model(scene.bodies[1].atmosphere.parameters, at::production_quality(scene.bodies[1].atmosphere.model)),
+          d_m(static_cast<float>(glm::length(s.camera_position_m - s.bodies[1].position_m))),
+          c_hat(glm::normalize(s.bodies[1].position_m - s.camera_position_m)),
+          sun(glm::normalize(s.bodies[0].position_m - s.bodies[1].position_m)),
+          to_cd_m2(static_cast<float>(
+              at::solar_scale(model, scene.bodies[0], glm::length(s.bodies[0].position_m - s.bodies[1].position_m)) *
+              kPhysicalSunRadiance_cd_m2 / scene.bodies[0].radiance)) {}
+
+    sh::vec2 behind(const glm::dvec3& dir) const {
+        const at::SkyViewTable& t = model.sky_view_table(d_m, at::sky_view_table_sun_mu(-glm::dot(sun, c_hat)));
+        return sh::star_sky_behind(model.shader_params(), sh::sampler2D{&t.parts[0]}, sh::sampler2D{&t.parts[1]},
+                                   sh::sampler2D{&t.parts[2]}, t.size(), d_m, sh::vec3(dir), c_hat, sun);
+    }
+    double weight(const glm::dvec3& dir, double vmag) const {
+        return sh::star_sky_weight(behind(dir), to_cd_m2, static_cast<float>(vmag));
+    }
+};
+
+// The star light of a frame: (with - without) luminance times each pixel's solid angle, summed:
+// a star's flux when its whole PSF is in the frame.
+double star_light(const Image& with, const Image& without, const ChannelFrustum& f) {
+    const double sx = (f.tan_left() + f.tan_right()) / with.width, sy = (f.tan_down() + f.tan_up()) / with.height;
+    double sum = 0.0;
+    for (int y = 0; y < with.height; ++y)
+        for (int x = 0; x < with.width; ++x) {
+            const double cx = -f.tan_left() + (x + 0.5) * sx, cy = -f.tan_down() + (y + 0.5) * sy;
+            const double q = 1.0 + cx * cx + cy * cy;
+            sum += (luminance(with.pixel(x, y)) - luminance(without.pixel(x, y))) * sx * sy / (q * std::sqrt(q));
+        }
+    return sum;
+}
+
+// Each star's light alone, stars in ascending magnitude: frames with the snapshot's magnitude
+// limit just past each star in turn, differenced.
+std::vector<double> each_star_light(SceneRenderer& r, const ChannelFrustum& f, Snapshot s,
+                                    const std::vector<double>& vmag) {
+    s.settings.exposure = 1e3f;  // high enough that no star falls under the exposure's criterion
+    s.settings.star_magnitude_limit = -30.0f;
+    Image before = r.render(s);
+    std::vector<double> out;
+    for (double m : vmag) {
+        s.settings.star_magnitude_limit = static_cast<float>(m + 0.01);
+        Image after = r.render(s);
+        out.push_back(star_light(after, before, f));
+        before = std::move(after);
+    }
+    return out;
+}
+
+double vacuum_flux(const SceneConfig& scene, double vmag) {
+    return scene.stars.zero_mag_flux * std::pow(10.0, -0.4 * vmag);
+}
+}  // namespace
+
+TEST(AtmosphereStars, OnlyTheStarsTheEyeCouldSeeAgainstTheSkyAreDrawn) {
+    // Eight stars of V = -1 .. 6 on a ring 15 degrees from the zenith; the channel looks up.
+    std::vector<glm::dvec3> stars;
+    std::vector<double> vmag;
+    for (int i = 0; i < 8; ++i) {
+        stars.push_back(radec_to_vec(glm::radians(45.0 * i), glm::radians(75.0)));
+        vmag.push_back(i - 1.0);
+    }
+    const SceneConfig scene = make_scene("sky_view", "sky-view", stars, vmag);
+    const ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 30.0, 30.0, 30.0});
+    const ChannelFrustum f = cluster.channels[0].frustum();
+    context();
+    SceneRenderer r(cluster, cluster.channels[0], scene);
+    int twilight_split = 0;
+    for (double zenith : {40.0, 96.0, 98.0, 100.0, 102.0, 120.0}) {
+        const Snapshot s = snapshot(2.0, sun_at_zenith_deg(zenith));
+        const SkyJudge judge(scene, s);
+        const std::vector<double> light = each_star_light(r, f, s, vmag);
+        int seen = 0;
+        for (size_t i = 0; i < stars.size(); ++i) {
+            const double w = judge.weight(stars[i], vmag[i]);
+            const double ratio = light[i] / (vacuum_flux(scene, vmag[i]) * judge.behind(stars[i]).y);
+            std::printf("sun at %.0f deg: V = %+.0f, limit %.2f, weight %.2f, drawn %.3f of its light\n", zenith,
+                        vmag[i], sh::eye_limiting_magnitude(judge.behind(stars[i]).x * judge.to_cd_m2), w, ratio);
+            EXPECT_NEAR(ratio, w, 0.1) << "sun at " << zenith << " deg, V = " << vmag[i];
+            seen += w > 0.0 ? 1 : 0;
+        }
+        if (zenith == 40.0) {
+            EXPECT_EQ(seen, 0) << "by day no star is seen";
+        }
+        if (zenith == 120.0) {
+            EXPECT_EQ(seen, 8) << "at night every star is seen";
+        }
+        if (seen > 0 && seen < 8) ++twilight_split;
+    }
+    EXPECT_GE(twilight_split, 2) << "in twilight the sky hides the faint stars and shows the bright ones";
+}
+
+TEST(AtmosphereStars, AStarFadingOnTheEdgeBetweenTwoChannelsShowsAlikeInBoth) {
+    // The star at the zenith, on the edge between two channels that look up side by side; its
+    // magnitude puts it half-way into its fade in twilight.
+    const glm::dvec3 zenith(0.0, 0.0, 1.0);
+    const Snapshot s = snapshot(2.0, sun_at_zenith_deg(98.0));
+    const SkyJudge judge(make_scene("edge_probe", "sky-view", {zenith}), s);
+    const sh::vec2 behind = judge.behind(zenith);
+    const double vmag = sh::eye_limiting_magnitude(behind.x * judge.to_cd_m2) - 0.25 + 2.5 * std::log10(behind.y);
+    const SceneConfig scene = make_scene("edge", "sky-view", {zenith}, {vmag});
+    const double w = judge.weight(zenith, vmag);
+    ASSERT_GT(w, 0.3);
+    ASSERT_LT(w, 0.7);
+    ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 0.0, 30.0, 30.0});
+    cluster.channels.push_back(cluster.channels[0]);
+    cluster.channels[1].name = "right";
+    cluster.channels[1].fov = {0.0, 30.0, 30.0, 30.0};
+    context();
+    double halves[2];
+    for (int c = 0; c < 2; ++c) {
+        SceneRenderer r(cluster, cluster.channels[static_cast<size_t>(c)], scene);
+        halves[c] = each_star_light(r, cluster.channels[static_cast<size_t>(c)].frustum(), s, {vmag})[0];
+    }
+    const double full = vacuum_flux(scene, vmag) * behind.y;
+    std::printf("edge: V = %.2f, weight %.3f; left %.3f, right %.3f of its light\n", vmag, w, halves[0] / full,
+                halves[1] / full);
+    EXPECT_NEAR((halves[0] + halves[1]) / full, w, 0.08);  // each channel faded it alike
+    EXPECT_GT(halves[0], 0.3 * w * full);                  // and it straddles the edge
+    EXPECT_GT(halves[1], 0.3 * w * full);
 }

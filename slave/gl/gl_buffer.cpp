@@ -22,6 +22,14 @@ GlVertexBuffer::~GlVertexBuffer() {
     glDeleteVertexArrays(1, &vao_);
 }
 
+void GlVertexBuffer::add_float_attribute(GLuint location, GLuint buffer) {
+    const GLuint binding = location + 1;  // binding 0 is the owned buffer's
+    glVertexArrayVertexBuffer(vao_, binding, buffer, 0, static_cast<GLsizei>(sizeof(float)));
+    glEnableVertexArrayAttrib(vao_, location);
+    glVertexArrayAttribFormat(vao_, location, 1, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_, location, binding);
+}
+
 void GlVertexBuffer::upload(const std::vector<float>& data) {
     glNamedBufferData(vbo_, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.empty() ? nullptr : data.data(),
                       GL_STATIC_DRAW);

@@ -18,6 +18,8 @@ public:
     void upload(const std::vector<float>& data);
     int vertex_count() const { return count_; }
     void bind() const { glBindVertexArray(vao_); }
+    // Takes one more attribute, `location`, from another buffer (not owned): one float per vertex.
+    void add_float_attribute(GLuint location, GLuint buffer);
 
 private:
     GLuint vao_ = 0, vbo_ = 0;

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "atmosphere/solar_scale.hpp"
@@ -197,6 +198,37 @@ bool AtmospherePass::reads_geometry_in(const FrameContext& f) const {
     for (const FrameBody& b : f.far_to_near)
         if (atmospheres_.count(b.body->id) && !draws_surface(f, b)) return true;
     return false;
+}
+
+StarSky AtmospherePass::star_sky(const FrameContext& f) const {
+    StarSky out;
+    const FrameBody* planet = nullptr;
+    GpuAtmosphere* atm = nullptr;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const FrameBody& b : f.far_to_near) {
+        const auto it = atmospheres_.find(b.body->id);
+        if (it == atmospheres_.end()) continue;
+        const double gap = b.sphere.distance_m - it->second->top_radius_m();
+        if (gap < nearest) {
+            nearest = gap;
+            planet = &b;
+            atm = it->second.get();
+        }
+    }
+    if (!planet || !(f.light.radiance > 0.0)) return out;
+    const shading::EclipseCasters& casters = f.casters_of(planet->body->id);
+    if (casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE) return out;
+    const PlanetSun ps = planet_sun(*planet->state, f.light, atm->model());
+    GpuSkyViewTable* table = atm->sky_view();
+    if (!table || !(ps.solar_scale > 0.0)) return out;
+    const glm::dvec3 to_centre = planet->state->position_m - f.view.camera_position_m;
+    out.table = table;
+    out.table_in = sky_view_inputs(f.view, *planet->state, ps.dir_world);
+    out.params = atm->model().shader_params();
+    out.center_dir_world = glm::vec3(glm::normalize(to_centre));
+    out.sun_world = glm::vec3(ps.dir_world);
+    out.to_cd_m2 = static_cast<float>(ps.solar_scale * kPhysicalSunRadiance_cd_m2 / f.light.radiance);
+    return out;
 }
 
 AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {

@@ -33,6 +33,7 @@
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "passes/sphere_screen_bounds.hpp"
+#include "passes/star_sky.hpp"
 #include "projection/channel_frustum.hpp"
 #include "wire/snapshot.hpp"
 
@@ -74,7 +75,7 @@ struct AtmosphereDrawExtras {
     glm::vec3 surface_reflectance{0.0f};  // albedo * tint, as the body pass writes it
 };
 
-class AtmospherePass : public RenderPass {
+class AtmospherePass : public RenderPass, public StarSkySource {
 public:
     using Atmospheres = std::map<uint16_t, std::unique_ptr<GpuAtmosphere>>;  // by body id
 
@@ -108,6 +109,11 @@ public:
     bool draws_surface(const FrameContext& frame, const FrameBody& planet) const;
     // The G-buffer is read unless every planet with an atmosphere draws its own surface.
     bool reads_geometry_in(const FrameContext& frame) const override;
+    // The sky behind the stars: the sky-view table of the atmosphere nearest the camera (by the
+    // distance to its top), with the inputs this frame's draws give it. None when that atmosphere
+    // has no table (a march level), when an eclipse shadow falls on its planet (the table has no
+    // shadow: the stars of a total eclipse must not be judged against a sunlit sky), or without a Sun.
+    StarSky star_sky(const FrameContext& frame) const override;
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
 
 namespace cupola {
@@ -13,14 +14,18 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     std::stable_sort(stars.begin(), stars.end(), [](const Star& a, const Star& b) { return a.v_mag < b.v_mag; });
     std::vector<float> data;
     data.reserve(stars.size() * 5);
+    std::vector<glm::vec4> dir_and_magnitude;
     for (const auto& s : stars) {
         const glm::dvec3 d = s.direction();
         data.insert(data.end(),
                     {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
                      static_cast<float>(config.zero_mag_flux * std::pow(10.0, -0.4 * s.v_mag)), s.b_minus_v});
         magnitudes_.push_back(s.v_mag);
+        dir_and_magnitude.emplace_back(glm::vec3(d), s.v_mag);
     }
     vertices_.upload(data);
+    sky_weights_ = std::make_unique<StarSkyWeights>(dir_and_magnitude);
+    vertices_.add_float_attribute(3, sky_weights_->buffer());
 }
 
 double StarPass::visible_magnitude(double exposure) const {
@@ -34,6 +39,7 @@ int StarPass::prepare(const FrameContext& frame) {
     view_ = &frame.view;
     exposure_ = frame.snap->settings.exposure;
     occluder_ = largest_occluder(frame);
+    sky_ = sky_source_ ? sky_source_->star_sky(frame) : StarSky{};
     magnitude_limit_ =
         std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
                   visible_magnitude(frame.snap->settings.exposure)});
@@ -54,13 +60,20 @@ StarOccluder StarPass::largest_occluder(const FrameContext& frame) {
     return o;
 }
 
-void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_, occluder_); }
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_, occluder_, sky_); }
 
-void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure, StarOccluder occluder) {
+void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure, StarOccluder occluder,
+                    const StarSky& sky) {
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
         magnitudes_.begin());
     if (count == 0) return;
+    if (sky.table) {  // the same table the atmosphere's draw looks up, rendered here when not current
+        sky.table->update(sky.table_in.x, sky.table_in.y);
+        sky_weights_->update(sky, count);
+    }
+    program_.use();
+    program_.set("u_sky_on", sky.table ? 1 : 0);
     const ChannelFrustum& f = *view.frustum;
     const double sigma = config_.psf_sigma_arcmin / 60.0 * std::numbers::pi / 180.0;
     const double ppt_x = f.width() / (f.tan_left() + f.tan_right());
@@ -75,7 +88,6 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
         f.width() + 2 * guard, f.height() + 2 * guard);
     glViewport(-guard, -guard, f.width() + 2 * guard, f.height() + 2 * guard);
 
-    program_.use();
     program_.set("u_world_to_channel", glm::mat3(view.world_to_channel));
     program_.set("u_projection", glm::mat4(wide.projection(0.1, 10.0)));
     program_.set("u_px_per_tangent", glm::vec2(ppt_x, ppt_y));
@@ -93,7 +105,13 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     vertices_.bind();
-    glDrawArrays(GL_POINTS, 0, count);
+    if (sky.table) {  // the stars up to the last one the eye sees (star_weights.frag wrote the count)
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, sky_weights_->draw_command());
+        glDrawArraysIndirect(GL_POINTS, nullptr);
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    } else {
+        glDrawArrays(GL_POINTS, 0, count);
+    }
     glDisable(GL_BLEND);
     glViewport(0, 0, f.width(), f.height());
     gl::check("star pass");

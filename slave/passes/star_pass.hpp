@@ -9,6 +9,8 @@
 #include "gl/gl_program.hpp"
 #include "passes/channel_view.hpp"
 #include "passes/render_pass.hpp"
+#include "passes/star_sky.hpp"
+#include "passes/star_sky_weights.hpp"
 #include "scene/star_catalog.hpp"
 
 namespace cupola {
@@ -28,17 +30,20 @@ public:
     // pixels where its PSF can reach kMinDisplay at this exposure (stars.vert; exposure <= 0:
     // the PSF out to kFixedReachSigma for every star). A star whose sprite lies wholly behind the
     // occluder (which the body pass, or its atmosphere relighting the ground, then paints over,
-    // opaque) is not drawn.
-    void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0, StarOccluder occluder = {});
+    // opaque) is not drawn. With a sky (StarSky::table), each star shows only as far as the eye
+    // could see it against the sky behind it (shared/star_visibility.glsl): fading in over half a
+    // magnitude above the threshold, not drawn below it; the table is brought up to date first.
+    void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0, StarOccluder occluder = {},
+              const StarSky& sky = {});
     // The largest body on screen of a frame, not a star and not around the camera.
     static StarOccluder largest_occluder(const FrameContext& frame);
     static constexpr double kFixedReachSigma = 4.0;
 
     // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
     // brighter than the scene's and the snapshot's magnitude limits and than visible_magnitude()
-    // at the snapshot's exposure (cluster-wide, so every channel draws the same stars). Skipped
-    // (0 draws) when no star is left. In a bright sky the stars are still drawn where the
-    // exposure can show them: this criterion does not see the sky behind them.
+    // at the snapshot's exposure (cluster-wide, so every channel draws the same stars), and of
+    // those the ones the eye could see against the sky of the sky source (set_sky_source), star
+    // by star. Skipped (0 draws) when no star is left.
     std::string name() const override { return "stars"; }
     PassIo io() const override { return {.writes_color = true}; }
     int prepare(const FrameContext& frame) override;
@@ -48,6 +53,9 @@ public:
     // kMinDisplay on the display at this exposure; fainter stars cannot change an 8-bit pixel.
     double visible_magnitude(double exposure) const;
     static constexpr double kMinDisplay = 1.0 / 8192.0;  // under half of the first sRGB code value
+    // Where the sky behind the stars comes from (the atmosphere pass); none: the exposure alone.
+    void set_sky_source(const StarSkySource* source) { sky_source_ = source; }
+    long sky_weight_renders() const { return sky_weights_->renders(); }
 
 private:
     StarFieldConfig config_;
@@ -58,6 +66,9 @@ private:
     double magnitude_limit_ = 0.0;
     double exposure_ = 0.0;
     StarOccluder occluder_;
+    std::unique_ptr<StarSkyWeights> sky_weights_;  // one texel per star, in vertex order
+    const StarSkySource* sky_source_ = nullptr;
+    StarSky sky_;
 };
 
 }  // namespace cupola

@@ -1,0 +1,39 @@
+#version 450 core
+// One texel per catalogue star: how much of it the eye sees against the sky behind it
+// (shared/star_visibility.glsl), from the sky-view table every channel shares and inputs in the
+// world frame. Rendered only when those inputs change (slave/passes/star_sky_weights.hpp); the
+// star sprites read their texel (stars.vert), which costs a CPU rasteriser far less than a
+// look-up per star per frame in its vertex stage. It also finds the last star with any weight
+// (the stars run from bright to faint): the star draw is indirect, and takes that as its count,
+// so a daytime sky draws no star at all and no CPU ever waits for the GPU.
+uniform sampler2D u_stars;  // per texel: the star's world direction and its visual magnitude
+uniform AtmosphereParams u_atm;
+uniform sampler2D u_sky_phased;  // the sky-view table's parts (shared/atmosphere_sky_view.glsl)
+uniform sampler2D u_sky_mie;
+uniform sampler2D u_sky_third;
+uniform vec2 u_sky_size;
+uniform float u_sky_d_m;        // camera -> planet centre, metres
+uniform vec3 u_sky_center_dir;  // unit, world frame: camera -> planet centre
+uniform vec3 u_sky_sun;         // unit, world frame: planet centre -> Sun
+uniform float u_sky_to_cd_m2;   // the table's values to cd/m^2
+uniform int u_star_count;       // the stars to judge: those the magnitude limits leave, a prefix
+uniform int u_width;            // texels per row
+// The star draw's indirect command (glDrawArraysIndirect), count 0 when this pass starts.
+layout(std430, binding = 0) buffer StarDraw {
+    uint count;
+    uint instance_count;
+    uint first;
+    uint base_instance;
+} u_draw;
+
+out vec4 frag_color;
+
+void main() {
+    vec4 star = texelFetch(u_stars, ivec2(gl_FragCoord.xy), 0);
+    vec2 behind = star_sky_behind(u_atm, u_sky_phased, u_sky_mie, u_sky_third, u_sky_size, u_sky_d_m, star.xyz,
+                                  u_sky_center_dir, u_sky_sun);
+    int index = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+    float weight = index < u_star_count ? star_sky_weight(behind, u_sky_to_cd_m2, star.w) : 0.0;
+    if (weight > 0.0) atomicMax(u_draw.count, uint(index + 1));
+    frag_color = vec4(weight, 0.0, 0.0, 1.0);
+}

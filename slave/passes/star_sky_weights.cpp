@@ -1,0 +1,100 @@
+#include "passes/star_sky_weights.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "passes/atmosphere_uniforms.hpp"
+#include "passes/sky_view_gpu.hpp"
+
+namespace cupola {
+
+namespace {
+int rows_for(size_t stars) {
+    return std::max(1, static_cast<int>((stars + StarSkyWeights::kWidth - 1) / StarSkyWeights::kWidth));
+}
+
+// The stars as texels; the texels past the last star hold the zenith at magnitude 0 (never read).
+std::vector<glm::vec4> star_texels(const std::vector<glm::vec4>& stars) {
+    std::vector<glm::vec4> t(static_cast<size_t>(StarSkyWeights::kWidth * rows_for(stars.size())),
+                             glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+    std::copy(stars.begin(), stars.end(), t.begin());
+    return t;
+}
+}  // namespace
+
+StarSkyWeights::StarSkyWeights(const std::vector<glm::vec4>& stars)
+    : stars_(kWidth, rows_for(stars.size()), star_texels(stars).data(), GL_NEAREST),
+      weights_(kWidth, rows_for(stars.size()), nullptr, GL_NEAREST),
+      fbo_({&weights_}),
+      program_("fullscreen.vert", "star_weights.frag") {
+    glCreateBuffers(1, &buffer_);
+    const std::vector<float> ones(static_cast<size_t>(weights_.width() * weights_.height()), 1.0f);
+    glNamedBufferData(buffer_, static_cast<GLsizeiptr>(ones.size() * sizeof(float)), ones.data(), GL_DYNAMIC_COPY);
+    glCreateBuffers(1, &draw_command_);
+    const GLuint none[4] = {0, 1, 0, 0};
+    glNamedBufferData(draw_command_, sizeof none, none, GL_DYNAMIC_COPY);
+}
+
+StarSkyWeights::~StarSkyWeights() {
+    glDeleteBuffers(1, &draw_command_);
+    glDeleteBuffers(1, &buffer_);
+}
+
+glm::vec3 StarSkyWeights::on_grid(const glm::vec3& unit) {
+    constexpr float kGrid = 16384.0f;  // 2^14
+    const glm::vec3 r(std::round(unit.x * kGrid), std::round(unit.y * kGrid), std::round(unit.z * kGrid));
+    return glm::normalize(r / kGrid);
+}
+
+bool StarSkyWeights::update(const StarSky& sky, int star_count) {
+    const glm::vec3 c = on_grid(sky.center_dir_world), s = on_grid(sky.sun_world);
+    const std::array<float, 10> key{
+        sky.table_in.x, sky.table_in.y, c.x, c.y, c.z, s.x, s.y, s.z, sky.to_cd_m2, static_cast<float>(star_count)};
+    if (valid_ && key == key_) return false;
+    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    fbo_.bind();
+    glDisable(GL_BLEND);
+    program_.use();
+    set_uniforms(sky, c, s, star_count);
+    const GLuint none[4] = {0, 1, 0, 0};
+    glNamedBufferSubData(draw_command_, 0, sizeof none, none);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, draw_command_);
+    vao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);  // the star draw reads the command this wrote
+    // Into the attribute buffer, on the GPU: the texture's red channel, row by row.
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(weights_.id(), 0, GL_RED, GL_FLOAT,
+                      static_cast<GLsizei>(weights_.width() * weights_.height() * sizeof(float)), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    gl::check("star sky weights");
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(framebuffer));
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    key_ = key;
+    valid_ = true;
+    ++renders_;
+    return true;
+}
+
+void StarSkyWeights::set_uniforms(const StarSky& sky, const glm::vec3& center_dir, const glm::vec3& sun,
+                                  int star_count) {
+    program_.set("u_star_count", star_count);
+    program_.set("u_width", kWidth);
+    stars_.bind(0);
+    program_.set("u_stars", 0);
+    sky.table->bind(1);
+    program_.set("u_sky_phased", 1);
+    program_.set("u_sky_mie", 2);
+    program_.set("u_sky_third", 3);
+    program_.set("u_sky_size", sky.table->size());
+    set_atmosphere_params(program_, sky.params);
+    program_.set("u_sky_d_m", sky.table_in.x);
+    program_.set("u_sky_center_dir", center_dir);
+    program_.set("u_sky_sun", sun);
+    program_.set("u_sky_to_cd_m2", sky.to_cd_m2);
+}
+
+}  // namespace cupola
