@@ -10,12 +10,14 @@
 // texel fetched per pixel into an RGBA16F target of the channel's size) is timed, and every cost
 // is also given as a ratio to it. Prints one JSON line per view (nlohmann-json):
 //   {"view", "size", "frames", "model", "renderer", "read_back", "frame_ms", "untimed_frame_ms",
-//    "trivial_ms", "ratio", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
+//    "trivial_ms", "ratio", "ratio_untimed", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
 //    "surface_separate", "stars_ignore_sky"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
-// untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end). With
+// untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end), and
+// ratio_untimed that frame over the trivial pass: the waits after every pass cost llvmpipe a
+// flush of its rasteriser threads each, which the slave does not pay. With
 // --read-back every frame is also read back as RGBA32F (what a files sink needs) and that is
 // counted in both; by default nothing is read back. Medians over --frames after --warm-up (the
 // trivial pass: three samples per frame); the minima are given too, and the medians of the
@@ -297,6 +299,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["untimed_frame_ms"] = median(t.untimed);
     j["trivial_ms"] = trivial_ms;
     j["ratio"] = trivial_ms > 0.0 ? frame_ms / trivial_ms : 0.0;
+    j["ratio_untimed"] = trivial_ms > 0.0 ? median(t.untimed) / trivial_ms : 0.0;
     // The fastest of the samples: on a machine shared with other work the least disturbed ones.
     const double trivial_min = *std::min_element(t.trivial.begin(), t.trivial.end());
     const double frame_min = *std::min_element(t.frame.begin(), t.frame.end());

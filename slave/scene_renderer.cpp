@@ -258,6 +258,8 @@ void SceneRenderer::set_surface_with_atmosphere(bool on) {
 
 void SceneRenderer::set_stars_see_the_sky(bool on) { impl_->stars->set_sky_source(on ? impl_->atmosphere : nullptr); }
 
+long SceneRenderer::star_weight_renders() const { return impl_->stars->sky_weight_renders(); }
+
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 
 const GlTexture& SceneRenderer::color() const { return impl_->targets.color(); }

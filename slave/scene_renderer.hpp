@@ -77,6 +77,8 @@ public:
     // shared/star_visibility.glsl); off, the magnitude limits and the exposure alone decide (for
     // comparison: by day the stars then show over the sky).
     void set_stars_see_the_sky(bool on);
+    // How often the star pass rendered its per-star sky weights (passes/star_sky_weights.hpp).
+    long star_weight_renders() const;
     // The last frame's timings while pass timing is on (empty before the first timed frame).
     const FrameTimings& last_frame_timings() const;
 

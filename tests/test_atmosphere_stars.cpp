@@ -20,6 +20,7 @@
 #include "gl/egl_context.hpp"
 #include "image/frame_image.hpp"
 #include "passes/star_sky.hpp"
+#include "passes/star_sky_weights.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"
 #include "support/headless_gl.hpp"
@@ -379,4 +380,32 @@ TEST(AtmosphereStars, AStarFadingOnTheEdgeBetweenTwoChannelsShowsAlikeInBoth) {
     EXPECT_NEAR((halves[0] + halves[1]) / full, w, 0.08);  // each channel faded it alike
     EXPECT_GT(halves[0], 0.3 * w * full);                  // and it straddles the edge
     EXPECT_GT(halves[1], 0.3 * w * full);
+}
+
+TEST(AtmosphereStars, StarWeightsAreRenderedOnlyWhenTheirInputsChange) {
+    std::vector<glm::dvec3> stars;
+    for (int i = 0; i < 4; ++i) stars.push_back(radec_to_vec(glm::radians(90.0 * i), glm::radians(70.0)));
+    const SceneConfig scene = make_scene("weights_keyed", "sky-view", stars, {0.0, 1.0, 2.0, 3.0});
+    const ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 30.0, 30.0, 30.0});
+    context();
+    SceneRenderer r(cluster, cluster.channels[0], scene);
+    Snapshot s = snapshot(2.0, sun_at_zenith_deg(98.0));
+    s.settings.exposure = 1e3f;
+    s.settings.star_magnitude_limit = 6.5f;
+    for (int i = 0; i < 3; ++i) r.render(s);
+    EXPECT_EQ(r.star_weight_renders(), 1) << "the same snapshot three times: one render";
+    s.settings.exposure = 1.1e3f;  // the same stars left by the exposure: the weights stand
+    r.render(s);
+    EXPECT_EQ(r.star_weight_renders(), 1);
+    s.bodies[0].position_m = kAu * sun_at_zenith_deg(99.0);
+    r.render(s);
+    EXPECT_EQ(r.star_weight_renders(), 2) << "the Sun moved a degree";
+    s.settings.star_magnitude_limit = 1.5f;  // two stars fewer to judge
+    r.render(s);
+    EXPECT_EQ(r.star_weight_renders(), 3);
+    // The directions' grid: a millionth of a radian does not move a direction off its grid point.
+    const glm::vec3 v = glm::normalize(glm::vec3(0.6f, 0.8f, 0.0f));
+    const glm::vec3 g = StarSkyWeights::on_grid(v);
+    EXPECT_EQ(StarSkyWeights::on_grid(glm::normalize(v + glm::vec3(2e-6f, -1e-6f, 1e-6f))), g);
+    EXPECT_LT(glm::length(g - v), 1e-4f);
 }

@@ -47,4 +47,23 @@ private:
     int width_ = 0, height_ = 0;
 };
 
+// Keeps the draw framebuffer binding and the viewport of its construction, and puts them back when
+// it goes out of scope: for a draw into a target of its own in the middle of another's pass.
+class DrawTargetRestorer {
+public:
+    DrawTargetRestorer() {
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer_);
+        glGetIntegerv(GL_VIEWPORT, viewport_);
+    }
+    ~DrawTargetRestorer() {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(framebuffer_));
+        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+    }
+    DrawTargetRestorer(const DrawTargetRestorer&) = delete;
+    DrawTargetRestorer& operator=(const DrawTargetRestorer&) = delete;
+
+private:
+    GLint framebuffer_ = 0, viewport_[4] = {0, 0, 0, 0};
+};
+
 }  // namespace cupola

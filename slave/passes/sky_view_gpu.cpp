@@ -23,9 +23,7 @@ GpuSkyViewTable::GpuSkyViewTable(const GpuAtmosphere& atmosphere)
 
 bool GpuSkyViewTable::update(float d_m, float mu_s) {
     if (d_m == d_m_ && mu_s == mu_s_) return false;
-    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    glGetIntegerv(GL_VIEWPORT, viewport);
+    const DrawTargetRestorer restore;
     const atmosphere::ProductionAtmosphere& m = atmosphere_.model();
     fbo_.bind();
     glDisable(GL_BLEND);
@@ -46,8 +44,6 @@ bool GpuSkyViewTable::update(float d_m, float mu_s) {
     vao_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     gl::check("sky-view table (" + m.parameters().name + ")");
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(framebuffer));
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     d_m_ = d_m;
     mu_s_ = mu_s;
     ++renders_;

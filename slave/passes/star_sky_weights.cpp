@@ -51,9 +51,7 @@ bool StarSkyWeights::update(const StarSky& sky, int star_count) {
     const std::array<float, 10> key{
         sky.table_in.x, sky.table_in.y, c.x, c.y, c.z, s.x, s.y, s.z, sky.to_cd_m2, static_cast<float>(star_count)};
     if (valid_ && key == key_) return false;
-    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    glGetIntegerv(GL_VIEWPORT, viewport);
+    const DrawTargetRestorer restore;
     fbo_.bind();
     glDisable(GL_BLEND);
     program_.use();
@@ -71,8 +69,6 @@ bool StarSkyWeights::update(const StarSky& sky, int star_count) {
                       static_cast<GLsizei>(weights_.width() * weights_.height() * sizeof(float)), nullptr);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     gl::check("star sky weights");
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(framebuffer));
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     key_ = key;
     valid_ = true;
     ++renders_;
