@@ -14,7 +14,9 @@
 
 #include "atmosphere/auto_exposure.hpp"
 #include "atmosphere/production_model.hpp"
+#include "atmosphere/scene_atmospheres.hpp"
 #include "atmosphere/solar_scale.hpp"
+#include "glare/glare_sources.hpp"
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "gl/egl_context.hpp"
@@ -39,8 +41,9 @@ glm::dvec3 radec_to_vec(double ra, double dec) {
 
 // Physical scene; stars at the given world directions, of V = 1 unless `vmag` gives each one's.
 // model: the atmosphere's quality level, "" for none.
+// glare: with the scene's sun glare (its defaults).
 SceneConfig make_scene(const std::string& tag, const std::string& model, const std::vector<glm::dvec3>& stars,
-                       const std::vector<double>& vmag = {}) {
+                       const std::vector<double>& vmag = {}, bool glare = false) {
     const std::string dir = test::scratch_dir("AtmosphereStars_" + tag);
     std::string csv = "ra_deg,dec_deg,vmag,bv,name\n";
     for (size_t i = 0; i < stars.size(); ++i) {
@@ -59,7 +62,8 @@ SceneConfig make_scene(const std::string& tag, const std::string& model, const s
         { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 2.0e9, "limb_darkening_u": 0.6 },
         { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "albedo": 0.3)" +
                                               atm + R"( } ],
-      "stars": { "catalog": "stars.csv", "magnitude_limit": 6.5, "psf_sigma_arcmin": 2.0, "zero_mag_flux": 2.54e-6 } })");
+      "stars": { "catalog": "stars.csv", "magnitude_limit": 6.5, "psf_sigma_arcmin": 2.0, "zero_mag_flux": 2.54e-6 })" +
+                                              std::string(glare ? R"(, "glare": { "strength": 1.0 })" : "") + " }");
     return load_scene_config(dir + "/scene.json");
 }
 
@@ -266,7 +270,7 @@ struct SkyJudge {
           sun(glm::normalize(s.bodies[0].position_m - s.bodies[1].position_m)),
           to_cd_m2(static_cast<float>(
               at::solar_scale(model, scene.bodies[0], glm::length(s.bodies[0].position_m - s.bodies[1].position_m)) *
-              kPhysicalSunRadiance_cd_m2 / scene.bodies[0].radiance)) {}
+              atmosphere::kPhysicalSunRadiance_cd_m2 / scene.bodies[0].radiance)) {}
 
     sh::vec2 behind(const glm::dvec3& dir) const {
         const at::SkyViewTable& t = model.sky_view_table(d_m, at::sky_view_table_sun_mu(-glm::dot(sun, c_hat)));
@@ -408,4 +412,35 @@ TEST(AtmosphereStars, StarWeightsAreRenderedOnlyWhenTheirInputsChange) {
     const glm::vec3 g = StarSkyWeights::on_grid(v);
     EXPECT_EQ(StarSkyWeights::on_grid(glm::normalize(v + glm::vec3(2e-6f, -1e-6f, 1e-6f))), g);
     EXPECT_LT(glm::length(g - v), 1e-4f);
+}
+
+TEST(AtmosphereStars, TheMasterGivesAStarHiddenByTheSkyNoGlare) {
+    // A V = -1 star (a glare source) 15 degrees from the zenith: the master's sources by day, in
+    // twilight and at night, against the judgement of the slaves' star pass.
+    const glm::dvec3 star = radec_to_vec(0.0, glm::radians(75.0));
+    const SceneConfig scene = make_scene("glare_sources", "sky-view", {star}, {-1.0}, true);
+    const SceneAtmospheres atmospheres(scene);
+    const GlareSources sources(scene, &atmospheres);
+    int shown = 0;
+    for (double zenith : {40.0, 86.0, 88.0, 89.0, 90.0, 91.0, 92.0, 120.0}) {
+        Snapshot s = snapshot(2.0, sun_at_zenith_deg(zenith));
+        s.settings.exposure = 1e6f;  // high enough that the exposure alone would give it a glare
+        const SkyJudge judge(scene, s);
+        const BodyState* sun_state = &s.bodies[0];
+        const double master = atmospheres.star_sky_weight(s, star, -1.0, sun_state, &scene.bodies[0]);
+        double glare = 0.0;
+        for (const GlareSource& g : sources.select(s))
+            if (g.body == GlareSource::kCatalogStar) glare += g.irradiance.y;
+        std::printf("sun at %.0f deg: master's weight %.3f, the slaves' %.3f, glare irradiance %.3g\n", zenith, master,
+                    judge.weight(star, -1.0), glare);
+        EXPECT_NEAR(master, judge.weight(star, -1.0), 0.15) << "sun at " << zenith << " deg";
+        if (master == 0.0) {
+            EXPECT_EQ(glare, 0.0) << "a star the sky hides has no glare (sun at " << zenith << " deg)";
+        }
+        if (master == 1.0) {
+            EXPECT_GT(glare, 0.0) << "sun at " << zenith << " deg";
+        }
+        shown += glare > 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(shown, 5) << "from 89 degrees on";
 }

@@ -7,6 +7,10 @@
 
 namespace cupola::atmosphere {
 
+// The physical Sun's disc-centre luminance (cd/m^2): a scene's Sun radiance stands for it, so a
+// scene radiance times kPhysicalSunRadiance_cd_m2 / the Sun's radiance is a luminance.
+inline constexpr double kPhysicalSunRadiance_cd_m2 = 2.0e9;
+
 // Irradiance (scene units) of a limb-darkened Sun disc of disc-centre radiance L, radius R and
 // linear limb-darkening u seen from distance_m: L * pi * (R / d)^2 * (1 - u / 3), with R / d
 // capped at 1. The one formula the body pass, the atmosphere pass and the auto exposure use.

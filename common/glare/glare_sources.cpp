@@ -76,6 +76,21 @@ std::optional<glm::dvec3> body_irradiance(const BodyConfig& b, const BodyState& 
     return glm::dvec3(b.tint) * (2.0 / 3.0 * b.albedo * e_sun * s * s * lambert_phase(phase));
 }
 
+// Whether a body without air hides part of the Sun from the camera (a planet's own ground hiding
+// the setting Sun does not count): in an eclipse the stars are not judged against the sky (the
+// master's march, like the slaves' sky-view table, has no eclipse shadow in it).
+bool sun_eclipsed(const Snapshot& snap, const SceneConfig& scene, const BodyState* sun_state, const BodyConfig* sun) {
+    if (!sun_state || !sun) return false;
+    std::vector<SphereOccluder> airless;
+    for (const BodyState& st : snap.bodies) {
+        if (st.id == sun_state->id || st.id >= scene.bodies.size()) continue;
+        const BodyConfig& b = scene.bodies[st.id];
+        if (b.kind != BodyKind::Star && !b.atmosphere.present) airless.push_back({st.position_m, b.radius_m});
+    }
+    return analytic_visibility(snap.camera_position_m, sun_state->position_m, sun->radius_m, airless).visible_fraction <
+           1.0;
+}
+
 }  // namespace
 
 glm::dvec3 GlareSources::transmittance(const Snapshot& snap, const glm::dvec3& dir) const {
@@ -139,6 +154,11 @@ void GlareSources::add_catalog_candidates(const Snapshot& snap, std::vector<Cand
     if (stars_.empty()) return;
     const GlareConfig& cfg = scene_->glare;
     const std::vector<SphereOccluder> occluders = snapshot_occluders(snap, *scene_, GlareSource::kCatalogStar);
+    const BodyState* sun_state = find_star(snap, *scene_);
+    const BodyConfig* sun = sun_state ? &scene_->bodies[sun_state->id] : nullptr;
+    // A star the eye cannot see against the sky behind it has no glare either (as the slaves
+    // draw the star itself).
+    const bool judge_sky = atmospheres_ && !sun_eclipsed(snap, *scene_, sun_state, sun);
     for (size_t i = 0; i < stars_.size(); ++i) {
         const Star& s = stars_[i];
         const glm::dvec3 dir = s.direction();
@@ -147,6 +167,7 @@ void GlareSources::add_catalog_candidates(const Snapshot& snap, std::vector<Cand
         // Cheap reject before the atmosphere: even undimmed it would not count.
         if (display_at_one_degree(e, snap.settings.exposure) < cfg.min_display) continue;
         e *= transmittance(snap, dir);
+        if (judge_sky) e *= atmospheres_->star_sky_weight(snap, dir, s.v_mag, sun_state, sun);
         const double rank = display_at_one_degree(e, snap.settings.exposure);
         const double weight = fade_in(cfg, rank);
         if (weight <= 0.0) continue;

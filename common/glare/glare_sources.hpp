@@ -6,7 +6,9 @@
 //     limb-darkened mean.
 //   - Planets and moons smaller than kMaxBodyRadius: Lambert spheres lit by the Sun, (2/3) albedo E_sun (R/d)^2
 //   Phi(phase).
-//   - Catalogue stars brighter than V = 2: zero_mag_flux x 10^(-0.4 V), coloured by B-V.
+//   - Catalogue stars brighter than V = 2: zero_mag_flux x 10^(-0.4 V), coloured by B-V, times
+//     how much of the star the eye sees against the sky behind it
+//     (SceneAtmospheres::star_sky_weight; not while an airless body hides part of the Sun).
 // Each is dimmed by the air in front of it (SceneAtmospheres::transmittance). A non-star source
 // counts once its glare one degree away would reach glare.min_display on the dome, fading in up
 // to twice that so nothing pops; the Suns first, then by brightness, at most max_sources.

@@ -227,7 +227,7 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     out.params = atm->model().shader_params();
     out.center_dir_world = glm::vec3(glm::normalize(to_centre));
     out.sun_world = glm::vec3(ps.dir_world);
-    out.to_cd_m2 = static_cast<float>(ps.solar_scale * kPhysicalSunRadiance_cd_m2 / f.light.radiance);
+    out.to_cd_m2 = static_cast<float>(ps.solar_scale * atmosphere::kPhysicalSunRadiance_cd_m2 / f.light.radiance);
     return out;
 }
 

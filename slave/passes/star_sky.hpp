@@ -4,16 +4,13 @@
 // comes from world positions in double, the same on every channel.
 #include <glm/glm.hpp>
 
+#include "atmosphere/solar_scale.hpp"
 #include "passes/frame_context.hpp"
 #include "shading/shared_types.hpp"
 
 namespace cupola {
 
 class GpuSkyViewTable;
-
-// The physical Sun's disc-centre luminance (cd/m^2): a scene's Sun radiance stands for it, so
-// scene radiance times kPhysicalSunRadiance_cd_m2 / the Sun's radiance is a luminance.
-constexpr double kPhysicalSunRadiance_cd_m2 = 2.0e9;
 
 struct StarSky {
     GpuSkyViewTable* table = nullptr;  // null: no sky to judge by (the exposure alone decides)
