@@ -41,9 +41,9 @@ glm::dvec3 radec_to_vec(double ra, double dec) {
 
 // Physical scene; stars at the given world directions, of V = 1 unless `vmag` gives each one's.
 // model: the atmosphere's quality level, "" for none.
-// glare: with the scene's sun glare (its defaults).
+// glare: with the scene's sun glare (its defaults); moon: a third body, an airless Moon.
 SceneConfig make_scene(const std::string& tag, const std::string& model, const std::vector<glm::dvec3>& stars,
-                       const std::vector<double>& vmag = {}, bool glare = false) {
+                       const std::vector<double>& vmag = {}, bool glare = false, bool moon = false) {
     const std::string dir = test::scratch_dir("AtmosphereStars_" + tag);
     std::string csv = "ra_deg,dec_deg,vmag,bv,name\n";
     for (size_t i = 0; i < stars.size(); ++i) {
@@ -61,7 +61,11 @@ SceneConfig make_scene(const std::string& tag, const std::string& model, const s
     test::write_text(dir + "/scene.json", R"({ "bodies": [
         { "name": "sun", "kind": "star", "ephemeris": "sun", "radius_m": 6.957e8, "radiance": 2.0e9, "limb_darkening_u": 0.6 },
         { "name": "earth", "kind": "planet", "ephemeris": "earth", "radius_m": 6.371e6, "albedo": 0.3)" +
-                                              atm + R"( } ],
+                                              atm + R"( })" +
+                                              std::string(moon ? R"(,
+        { "name": "moon", "kind": "moon", "ephemeris": "moon", "radius_m": 1.7374e6, "albedo": 0.12 })"
+                                                               : "") +
+                                              R"( ],
       "stars": { "catalog": "stars.csv", "magnitude_limit": 6.5, "psf_sigma_arcmin": 2.0, "zero_mag_flux": 2.54e-6 })" +
                                               std::string(glare ? R"(, "glare": { "strength": 1.0 })" : "") + " }");
     return load_scene_config(dir + "/scene.json");
@@ -443,4 +447,28 @@ TEST(AtmosphereStars, TheMasterGivesAStarHiddenByTheSkyNoGlare) {
         shown += glare > 0.0 ? 1 : 0;
     }
     EXPECT_EQ(shown, 5) << "from 89 degrees on";
+}
+
+TEST(AtmosphereStars, InASolarEclipseTheMasterDoesNotJudgeStarsAgainstTheSunlitSky) {
+    // By day a V = -1 star has no glare; with the Moon over the Sun (its sky has no eclipse
+    // shadow on the master's side) the exposure alone decides again.
+    const glm::dvec3 star = radec_to_vec(0.0, glm::radians(75.0));
+    const SceneConfig scene = make_scene("glare_eclipse", "sky-view", {star}, {-1.0}, true, true);
+    const SceneAtmospheres atmospheres(scene);
+    const GlareSources sources(scene, &atmospheres);
+    Snapshot s = snapshot(2.0, sun_at_zenith_deg(40.0));
+    s.settings.exposure = 1e6f;
+    s.bodies.resize(3);
+    s.bodies[2].id = 2;
+    const auto star_glare = [&] {
+        double e = 0.0;
+        for (const GlareSource& g : sources.select(s))
+            if (g.body == GlareSource::kCatalogStar) e += g.irradiance.y;
+        return e;
+    };
+    const glm::dvec3 to_sun = glm::normalize(s.bodies[0].position_m - s.camera_position_m);
+    s.bodies[2].position_m = s.camera_position_m - 3.844e8 * to_sun;  // behind the camera: no eclipse
+    EXPECT_EQ(star_glare(), 0.0);
+    s.bodies[2].position_m = s.camera_position_m + 3.844e8 * to_sun;  // on the Sun: total
+    EXPECT_GT(star_glare(), 0.0);
 }
