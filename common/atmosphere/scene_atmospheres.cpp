@@ -67,8 +67,7 @@ double SceneAtmospheres::star_sky_weight(const Snapshot& snap, const glm::dvec3&
     if (shading::atm_ray_hits_ground(a, start.r_m, start.mu)) return 0.0;
     glm::vec3 tr(1.0f);
     const double sky = body->model.to_xyz(body->model.radiance(start, -1.0f, &tr)).y;  // cd/m^2 per unit irradiance
-    const double to_cd_m2 =
-        atmosphere::solar_scale(body->model, *sun, d_sun) * atmosphere::kPhysicalSunRadiance_cd_m2 / sun->radiance;
+    const double to_cd_m2 = atmosphere::sky_to_cd_m2(atmosphere::solar_scale(body->model, *sun, d_sun), sun->radiance);
     return shading::star_sky_weight(glm::vec2(static_cast<float>(sky), shading::rec709_luminance(tr)),
                                     static_cast<float>(to_cd_m2), static_cast<float>(v_mag));
 }

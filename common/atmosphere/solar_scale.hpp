@@ -23,4 +23,11 @@ double physical_solar_illuminance(const ProductionAtmosphere& model);
 // sun_irradiance_scene_units / physical_solar_illuminance.
 double solar_scale(const ProductionAtmosphere& model, const BodyConfig& sun, double distance_m);
 
+// The factor that turns the model's sky (per unit solar irradiance, as the tables hold it) into
+// cd/m^2 for a scene whose Sun has disc radiance sun_radiance: the sky in scene units
+// (solar_scale) read against the physical Sun (kPhysicalSunRadiance_cd_m2).
+inline double sky_to_cd_m2(double solar_scale, double sun_radiance) {
+    return solar_scale * kPhysicalSunRadiance_cd_m2 / sun_radiance;
+}
+
 }  // namespace cupola::atmosphere

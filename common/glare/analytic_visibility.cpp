@@ -139,13 +139,13 @@ GlareVisibility analytic_visibility(const glm::dvec3& camera_m, const glm::dvec3
     return out;
 }
 
-std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene,
-                                               uint16_t source_body_id) {
+std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene, uint16_t source_body_id,
+                                               bool airless_only) {
     std::vector<SphereOccluder> out;
     for (const BodyState& st : snap.bodies) {
         if (st.id == source_body_id || st.id >= scene.bodies.size()) continue;
         const BodyConfig& body = scene.bodies[st.id];
-        if (body.kind == BodyKind::Star) continue;
+        if (body.kind == BodyKind::Star || (airless_only && body.atmosphere.present)) continue;
         out.push_back({st.position_m, body.radius_m});
     }
     return out;

@@ -76,7 +76,9 @@ inline constexpr double kStraightEdgeAngle = 1.1655611852072114;
 GlareVisibility analytic_visibility(const glm::dvec3& camera_m, const glm::dvec3& source_center_m,
                                     double source_radius_m, const std::vector<SphereOccluder>& occluders);
 
-// Convenience: every non-star body of the snapshot except the source itself as an occluder.
-std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene, uint16_t source_body_id);
+// Convenience: every non-star body of the snapshot except the source itself as an occluder;
+// airless_only: only the bodies without an atmosphere.
+std::vector<SphereOccluder> snapshot_occluders(const Snapshot& snap, const SceneConfig& scene, uint16_t source_body_id,
+                                               bool airless_only = false);
 
 }  // namespace cupola

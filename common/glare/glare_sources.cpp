@@ -81,12 +81,7 @@ std::optional<glm::dvec3> body_irradiance(const BodyConfig& b, const BodyState& 
 // master's march, like the slaves' sky-view table, has no eclipse shadow in it).
 bool sun_eclipsed(const Snapshot& snap, const SceneConfig& scene, const BodyState* sun_state, const BodyConfig* sun) {
     if (!sun_state || !sun) return false;
-    std::vector<SphereOccluder> airless;
-    for (const BodyState& st : snap.bodies) {
-        if (st.id == sun_state->id || st.id >= scene.bodies.size()) continue;
-        const BodyConfig& b = scene.bodies[st.id];
-        if (b.kind != BodyKind::Star && !b.atmosphere.present) airless.push_back({st.position_m, b.radius_m});
-    }
+    const std::vector<SphereOccluder> airless = snapshot_occluders(snap, scene, sun_state->id, true);
     return analytic_visibility(snap.camera_position_m, sun_state->position_m, sun->radius_m, airless).visible_fraction <
            1.0;
 }

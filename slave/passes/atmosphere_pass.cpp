@@ -68,6 +68,12 @@ glm::vec2 sky_view_inputs(const ChannelView& view, const BodyState& state, const
     return glm::vec2(static_cast<float>(d), atmosphere::sky_view_table_sun_mu(mu_s));
 }
 
+// Whether the eclipse shadows on a planet need the per-pixel march (the sky-view table has no
+// shadow; the illustrative mode only tints the surface, which the look-up does itself).
+bool shadow_needs_march(const shading::EclipseCasters& casters) {
+    return casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
+}
+
 // Does a body other than the planet meet the sphere of its atmosphere's top (channel frame, double)?
 bool other_body_in_shell(const FrameContext& frame, const FrameBody& planet, double top_radius_m) {
     const glm::dvec3 c = planet.sphere.center_dir * planet.sphere.distance_m;
@@ -216,8 +222,7 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
         }
     }
     if (!planet || !(f.light.radiance > 0.0)) return out;
-    const shading::EclipseCasters& casters = f.casters_of(planet->body->id);
-    if (casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE) return out;
+    if (shadow_needs_march(f.casters_of(planet->body->id))) return out;
     const PlanetSun ps = planet_sun(*planet->state, f.light, atm->model());
     GpuSkyViewTable* table = atm->sky_view();
     if (!table || !(ps.solar_scale > 0.0)) return out;
@@ -227,7 +232,7 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     out.params = atm->model().shader_params();
     out.center_dir_world = glm::vec3(glm::normalize(to_centre));
     out.sun_world = glm::vec3(ps.dir_world);
-    out.to_cd_m2 = static_cast<float>(ps.solar_scale * atmosphere::kPhysicalSunRadiance_cd_m2 / f.light.radiance);
+    out.to_cd_m2 = static_cast<float>(atmosphere::sky_to_cd_m2(ps.solar_scale, f.light.radiance));
     return out;
 }
 
@@ -254,7 +259,7 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
                                                 const shading::EclipseCasters& casters, bool geometry_in_air,
                                                 AtmosphereDrawExtras& extras, int half) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
-    const bool shadowed = casters.count > 0 && casters.mode != shading::ECLIPSE_MODE_ILLUSTRATIVE;
+    const bool shadowed = shadow_needs_march(casters);
     GpuSkyViewTable* table = atm.sky_view();
     if (table && !shadowed) {
         table->update(table_in.x, table_in.y);

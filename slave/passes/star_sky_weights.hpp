@@ -32,7 +32,6 @@ public:
     // first star_count stars (the others get weight 0); restores the framebuffer binding and the
     // viewport. Returns true when it rendered.
     bool update(const StarSky& sky, int star_count);
-    const GlTexture& texture() const { return weights_; }
     GLuint buffer() const { return buffer_; }  // one float per star (and per padding texel)
     // The indirect command of glDrawArraysIndirect (count, 1, 0, 0) for the stars with weight.
     GLuint draw_command() const { return draw_command_; }
