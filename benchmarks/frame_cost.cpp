@@ -13,7 +13,7 @@
 //    "trivial_ms", "ratio", "ratio_untimed", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
-//    "surface_separate", "stars_ignore_sky"}
+//    "surface_separate", "stars_ignore_sky", "sky_last"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end), and
 // ratio_untimed that frame over the trivial pass: the waits after every pass cost llvmpipe a
@@ -28,7 +28,7 @@
 // angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
-//                        [--stars-ignore-sky]
+//                        [--stars-ignore-sky] [--sky-last]
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -192,6 +192,7 @@ double median(std::vector<double> v) {
 struct Options {
     int size = 1024, frames = 10, warm_up = 2, device = -1;
     bool read_back = false, halo_separate = false, surface_separate = false, stars_ignore_sky = false;
+    bool sky_last = false;
     double sun_step_deg = 0.0;
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
@@ -325,6 +326,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["halo_separate"] = o.halo_separate;
     j["surface_separate"] = o.surface_separate;
     j["stars_ignore_sky"] = o.stars_ignore_sky;
+    j["sky_last"] = o.sky_last;
     return j;
 }
 
@@ -366,6 +368,7 @@ int run(const Options& o) {
     r.set_halo_with_atmosphere(!o.halo_separate);
     r.set_surface_with_atmosphere(!o.surface_separate);
     r.set_stars_see_the_sky(!o.stars_ignore_sky);
+    r.set_sky_first(!o.sky_last);
     TrivialPass trivial(o.size);
     for (const ViewSpec* v : views) {
         const Snapshot snap = view_snapshot(*v, scene, cluster, exposure, glare.get());
@@ -397,6 +400,8 @@ int main(int argc, char** argv) {
                  "the glare pass draws the glare's halo on its own, never the atmosphere (for comparison)");
     app.add_flag("--stars-ignore-sky", o.stars_ignore_sky,
                  "every star the exposure can show is drawn, the sky behind it not considered (for comparison)");
+    app.add_flag("--sky-last", o.sky_last,
+                 "the stars, the Sun and the bodies are drawn before the sky, never after it (for comparison)");
     app.add_option("--sun-step-deg", o.sun_step_deg,
                    "raise the Sun by this much every frame (0: a static view; the sky-view table is re-rendered "
                    "when the Sun's zenith angle crosses a step of its grid)");

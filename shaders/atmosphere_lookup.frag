@@ -75,16 +75,27 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
 //                     over its own cap and discarding the other's pixels, and each free of the
 //                     other's branch. In the ground half the body pass did not draw the planet:
 //                     the reflectance comes from its map here, not from the G-buffer
+//   SKY_FIRST         (with SKY_HALF) the sky is drawn first and written, not blended, over a
+//                     colour that was never cleared: the stars, the Sun and the bodies beyond
+//                     the air are drawn after it, each taking the air in front of it from the
+//                     table itself (slave/passes/beyond_the_air.hpp), so the sky needs no
+//                     transmittance
+//   SKY_MAP           (outside) the draw relights the planet's surface itself, from its map, as
+//                     the ground half does inside: nothing else is in front of the air
 
 // The pixel's light from the table at uv: through the air (sky) or on the ground (relit surface).
 void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
     vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, nu);
-    vec3 third = vec3(textureLod(u_sky_third, uv, 0.0));
     if (!ground) {
         out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale, 0.0);
-        out_factor = vec4(third, 1.0);
+#if SKY_FIRST
+        out_factor = vec4(0.0, 0.0, 0.0, 1.0);  // nothing lies behind yet: no transmittance needed
+#else
+        out_factor = vec4(vec3(textureLod(u_sky_third, uv, 0.0)), 1.0);
+#endif
         return;
     }
+    vec3 third = vec3(textureLod(u_sky_third, uv, 0.0));
     vec3 reflectance = (surface && geo.a >= 0.0) ? geo.rgb : u_atm.ground_albedo;  // no body drawn: robust fallback
     vec3 tint = vec3(1.0);
 #if SKY_ILLUSTRATIVE
@@ -97,7 +108,7 @@ void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) 
     out_factor = vec4(0.0, 0.0, 0.0, 1.0);
 }
 
-#if SKY_HALF == 2
+#if SKY_HALF == 2 || SKY_MAP
 // What the body pass would have written into the G-buffer: (reflectance, 0) where the ray meets
 // the planet (the same hit and map coordinates as body.frag), else "nothing drawn".
 vec4 surface_reflectance(vec3 v) {
@@ -151,16 +162,24 @@ void shade(vec3 v, ivec2 px) {
         }
     }
 #endif
-    float x = atm_sky_view_x(u_atm, false, u_mu_h, ground, mu);
-    float sin_t = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
-    vec2 uv = atm_sky_view_uv(ground, x, atm_sky_view_cos_phi(v, sin_t, u_sun_perp), u_sky_size);
+    vec2 uv = atm_sky_view_inside_uv(u_atm, v, up, u_mu_h, u_sun_perp, ground, u_sky_size);
     from_table(uv, dot(v, u_sun), ground, surface, geo, v);
 }
 #else
 // A camera outside: the ray enters the top sphere first.
 void shade(vec3 v, ivec2 px) {
-    vec4 geo = texelFetch(u_geometry, px, 0);  // a body in front of the air is seen from anywhere
     AtmosphereRayStart st = atm_ray_start(u_atm, u_d_m, v, u_center_dir, u_sun);
+#if SKY_MAP
+    // Nothing can lie in front of the air (the CPU checked) and the body pass did not draw the
+    // planet: its own hit decides the surface, and the map gives its reflectance.
+    if (!st.valid) {  // the ray misses the air
+        keep_scene();
+        return;
+    }
+    vec4 geo = surface_reflectance(v);
+    bool surface = geo.a >= 0.0;
+#else
+    vec4 geo = texelFetch(u_geometry, px, 0);  // a body in front of the air is seen from anywhere
     float g = geo.a;
     if (!st.valid || (g >= 0.0 && g <= st.offset_m)) {  // the ray misses the air, or a body in front of it
         keep_scene();
@@ -173,8 +192,9 @@ void shade(vec3 v, ivec2 px) {
     if (hit.w >= 0.0) {
         surface = g < 0.0 || g >= sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m) * (1.0 - 1e-3);
     }
+#endif
     bool ground = surface || atm_ray_hits_ground(u_atm, st.r_m, st.mu);
-#if SKY_GEOMETRY
+#if SKY_GEOMETRY && !SKY_MAP
     if (!surface && g >= 0.0 && g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)) {
         march_to_geometry(st, g);
         return;
@@ -191,5 +211,8 @@ void main() {
     // The glare's halo, upsampled as glare_upsample.frag does it, added last (nothing after this
     // draw multiplies the colour): the same sum as the glare pass's own additive draw.
     out_add.rgb += textureLod(u_halo, gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw, 0.0).rgb;
+#endif
+#if SKY_FIRST
+    out_add.a = 1.0;  // written, not blended: the coverage a cleared colour would have had
 #endif
 }

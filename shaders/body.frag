@@ -7,6 +7,8 @@
 // like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl),
 // only in the BODY_ECLIPSE variant (slave/passes/body_pass.cpp): on a CPU rasteriser a branch
 // costs whether taken or not, and a body whose atmosphere relights its surface needs none.
+// BODY_AFTER_SKY: the sky was drawn first (FrameContext::sky_first); the body is composed with the
+// air in front of it here and writes no geometry.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;       // unit, channel frame
@@ -20,9 +22,35 @@ uniform sampler2D u_texture;     // linear RGB, row 0 = north
 uniform EclipseCasters u_ecl;    // channel frame, metres from the body's centre
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
+#if BODY_AFTER_SKY
+uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
+uniform SkyInFront u_sky;
+uniform sampler2D u_sky_phased;
+uniform sampler2D u_sky_mie;
+uniform sampler2D u_sky_third;
+uniform int u_halo_on;     // the sky's draw added the glare's halo: so does this one
+uniform sampler2D u_halo;  // as atmosphere_lookup.frag has them
+uniform vec4 u_halo_map;
+#endif
 
 layout(location = 0) out vec4 frag_color;
+#if !BODY_AFTER_SKY
 layout(location = 1) out vec4 frag_geometry;  // (reflectance, distance)
+#endif
+
+#if BODY_AFTER_SKY
+// The sky was drawn first: the body replaces it, seen through the air in front as the
+// atmosphere's look-up composes what lies beyond the air (times the transmittance, plus the
+// in-scatter), with the glare's halo the sky's draw added. Below the horizon the ground is in front.
+vec4 through_the_air(vec3 v, vec3 radiance) {
+    if (atm_sky_in_front_hidden(u_atm, u_sky, v)) discard;
+    vec2 uv = atm_sky_in_front_uv(u_atm, u_sky, v);
+    vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, dot(v, u_sky.sun));
+    vec3 c = radiance * vec3(textureLod(u_sky_third, uv, 0.0)) + max(inscatter, vec3(0.0)) * u_sky.solar_scale;
+    if (u_halo_on != 0) c += textureLod(u_halo, gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw, 0.0).rgb;
+    return vec4(c, 1.0);
+}
+#endif
 
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
@@ -39,8 +67,12 @@ void main() {
         light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances_m.y);
     }
 #endif
+#if BODY_AFTER_SKY
+    frag_color = through_the_air(v, u_lit * cos_i * albedo_map * light);
+#else
     frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
     float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
     frag_geometry = vec4(u_reflectance * albedo_map, distance_m);
     gl_FragDepth = log_depth(distance_m);  // only a depth target (the glare probe) keeps it
+#endif
 }

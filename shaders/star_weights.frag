@@ -30,10 +30,12 @@ out vec4 frag_color;
 
 void main() {
     vec4 star = texelFetch(u_stars, ivec2(gl_FragCoord.xy), 0);
-    vec2 behind = star_sky_behind(u_atm, u_sky_phased, u_sky_mie, u_sky_third, u_sky_size, u_sky_d_m, star.xyz,
-                                  u_sky_center_dir, u_sky_sun);
+    vec4 light = star_sky_light(u_atm, u_sky_phased, u_sky_mie, u_sky_third, u_sky_size, u_sky_d_m, star.xyz,
+                                u_sky_center_dir, u_sky_sun);
     int index = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
-    float weight = index < u_star_count ? star_sky_weight(behind, u_sky_to_cd_m2, star.w) : 0.0;
+    float weight = index < u_star_count ? star_sky_weight(star_sky_behind_of(light), u_sky_to_cd_m2, star.w) : 0.0;
     if (weight > 0.0) atomicMax(u_draw.count, uint(index + 1));
-    frag_color = vec4(weight, 0.0, 0.0, 1.0);
+    // The weight, and the weight times the air's transmittance in front of the star (what a star
+    // drawn after the sky takes: the atmosphere's look-up no longer multiplies it).
+    frag_color = vec4(weight, weight * vec3(light));
 }

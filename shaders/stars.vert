@@ -8,11 +8,13 @@
 // With a sky (u_sky_on), a star shows only as far as the eye could see it against the sky behind
 // it (shared/star_visibility.glsl, Schaefer's threshold): its weight, judged in the world frame
 // from the sky-view table every channel shares (star_weights.frag), so a star is seen alike on
-// every channel.
+// every channel. When the sky is drawn first (FrameContext::sky_first), the star also takes the
+// air's transmittance in front of it from there, one value per star.
 layout(location = 0) in vec3 a_dir;   // unit direction, world frame
 layout(location = 1) in float a_flux; // zero_mag_flux * 10^(-0.4 V), scene units x sr
 layout(location = 2) in float a_bv;   // B-V colour index
-layout(location = 3) in float a_sky_weight;  // slave/passes/star_sky_weights.hpp
+layout(location = 3) in vec4 a_sky_weight;  // slave/passes/star_sky_weights.hpp: the weight, and
+                                            // the weight times the air's transmittance (rgb)
 
 uniform mat3 u_world_to_channel;
 uniform mat4 u_projection;      // the channel frustum widened by a guard band
@@ -24,7 +26,8 @@ uniform float u_fixed_reach_sigma;
 uniform vec3 u_occluder_dir;    // unit, channel frame: the largest body on screen
 uniform float u_occluder_rad;   // its angular radius; <= 0: none
 uniform float u_pixel_rad;      // the widest angle a pixel spans
-uniform int u_sky_on;           // 0: no sky to judge the stars by
+uniform int u_sky_on;           // 0: no sky to judge the stars by; 1: the weight; 2: the weight
+                                // and the air in front (the sky was drawn first)
 
 flat out vec3 v_color;    // flux times the unit-luminance B-V colour
 flat out vec2 v_t;        // tangent-plane point of the star
@@ -33,13 +36,20 @@ flat out vec2 v_sigma_t;  // tangent-plane sigmas of its PSF
 // How much of the star the eye sees against the sky (1 without one).
 float sky_weight() {
     if (u_sky_on == 0) return 1.0;
-    return a_sky_weight;
+    return a_sky_weight.x;
+}
+
+// What the star's light is multiplied by here: its weight, and when the sky was drawn first (the
+// atmosphere's look-up then no longer multiplies what lies behind it) the air's transmittance.
+vec3 sky_factor(float weight) {
+    if (u_sky_on == 2) return vec3(a_sky_weight.yzw);
+    return vec3(weight);
 }
 
 void main() {
     vec3 d = u_world_to_channel * a_dir;
     float weight = sky_weight();
-    v_color = weight * a_flux * bv_to_linear_srgb(a_bv);
+    v_color = sky_factor(weight) * a_flux * bv_to_linear_srgb(a_bv);
     gl_Position = u_projection * vec4(d, 1.0);
     float zc = min(d.z, -1e-3);
     float tx = d.x / -zc;

@@ -8,7 +8,9 @@
 // a millionth of the disc, it shows only once the Moon covers the disc and the atmosphere's
 // in-scatter falls with the visible fraction, i.e. in totality.
 // The disc also writes the deferred geometry (no diffuse reflectance, hit distance in metres) so
-// that an atmosphere behind the disc leaves it alone; the corona leaves "background".
+// that an atmosphere behind the disc leaves it alone; the corona leaves "background". Drawn
+// additively (alpha 0: the colour's coverage stays 1). SUN_AFTER_SKY: the sky was drawn first
+// (FrameContext::sky_first), and the disc and the corona take the air in front of them here.
 uniform vec4 u_tangents;
 uniform vec2 u_size;
 uniform vec3 u_center_dir;     // unit, channel frame
@@ -19,9 +21,27 @@ uniform vec4 u_disc_distances_m; // (d, R, d - R, d + R) of the disc in metres, 
 uniform vec3 u_radiance;       // disc-centre radiance times tint
 uniform float u_limb_u;
 uniform float u_corona;        // 0: no corona
+#if SUN_AFTER_SKY
+uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
+uniform SkyInFront u_sky;
+uniform sampler2D u_sky_third;
+#endif
 
 layout(location = 0) out vec4 frag_color;
+#if !SUN_AFTER_SKY
 layout(location = 1) out vec4 frag_geometry;
+#endif
+
+// What the disc or the corona adds here: as it is, or (SUN_AFTER_SKY, the sky drawn first) times
+// the air's transmittance in front of it, as the atmosphere's look-up would have multiplied it;
+// nothing below the horizon. Alpha 0: the coverage stays what it was.
+vec4 added(vec3 v, vec3 radiance) {
+#if SUN_AFTER_SKY
+    if (atm_sky_in_front_hidden(u_atm, u_sky, v)) discard;
+    radiance *= vec3(textureLod(u_sky_third, atm_sky_in_front_uv(u_atm, u_sky, v), 0.0));
+#endif
+    return vec4(radiance, 0.0);
+}
 
 const float CORONA_EXTENT = 6.0;
 
@@ -33,8 +53,10 @@ void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
     vec4 hit = sphere_hit(v, u_center_dir, u_disc_sin_alpha);
     if (hit.w >= 0.0) {
-        frag_color = vec4(u_radiance * limb_darkening(hit.w, u_limb_u), 1.0);
+        frag_color = added(v, u_radiance * limb_darkening(hit.w, u_limb_u));
+#if !SUN_AFTER_SKY
         frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, hit.w, u_disc_distances_m));
+#endif
         return;
     }
     float theta = angle_between_units(v, u_center_dir);
@@ -43,6 +65,8 @@ void main() {
         discard;
     }
     vec3 mean_disc = u_radiance * limb_darkening_disc_average(u_limb_u);
-    frag_color = vec4(mean_disc * (u_corona * corona_profile(max(rho, 1.0))), 1.0);
+    frag_color = added(v, mean_disc * (u_corona * corona_profile(max(rho, 1.0))));
+#if !SUN_AFTER_SKY
     frag_geometry = vec4(0.0, 0.0, 0.0, -1.0);
+#endif
 }

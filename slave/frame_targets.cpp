@@ -12,13 +12,16 @@ FrameTargets::FrameTargets(int width, int height)
       a_({&color_a_}),
       b_({&color_b_}) {}
 
-void FrameTargets::begin_frame(bool geometry) {
+void FrameTargets::begin_frame(bool geometry, bool color) {
     current_ = &a_;
     scene_.bind();
     bound_ = &scene_;
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    scene_.clear(0, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    if (color) {
+        scene_.clear(0, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        ++color_clears_;
+    }
     if (!geometry) return;
     scene_.clear(1, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));  // distance < 0: no geometry
     ++geometry_clears_;

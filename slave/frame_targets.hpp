@@ -24,9 +24,11 @@ public:
     // Binds the scene target and clears it: colour (0, 0, 0, 1), G-buffer distance -1 (nothing
     // drawn); colour A is the colour so far.
     // geometry: clear the G-buffer too (some pass reads it this frame); else it keeps whatever was
-    // drawn into it before and no pass may read it.
-    void begin_frame(bool geometry = true);
+    // drawn into it before and no pass may read it. color: clear the colour; else the frame's
+    // first draws must write every pixel (the sky drawn first, FrameContext::sky_first).
+    void begin_frame(bool geometry = true, bool color = true);
     uint64_t geometry_clears() const { return geometry_clears_; }
+    uint64_t color_clears() const { return color_clears_; }
     // Binds what a pass with these reads and writes draws into (unless it is bound already) and
     // returns what it samples. A pass that writes none of the frame's targets binds its own.
     PassInputs bind_for(const PassIo& io);
@@ -48,7 +50,7 @@ private:
     GlFramebuffer scene_, a_, b_;  // scene_: colour A and the G-buffer
     const GlFramebuffer* current_ = &a_;
     const GlFramebuffer* bound_ = nullptr;
-    uint64_t geometry_clears_ = 0;
+    uint64_t geometry_clears_ = 0, color_clears_ = 0;
 };
 
 }  // namespace cupola

@@ -11,6 +11,7 @@
 #include "eclipse/umbra_light.hpp"
 #include "frame_targets.hpp"
 #include "passes/atmosphere_pass.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/glare_halo_pass.hpp"
 #include "passes/glare_pass.hpp"
@@ -93,6 +94,12 @@ struct SceneRenderer::Impl {
             painter.set_surface_drawer(atmosphere);
             stars->set_sky_source(atmosphere);  // each star judged against the sky behind it
         }
+        // In a frame whose sky is drawn first, the stars and the Sun and bodies draw here instead
+        // of in their own places above, each taking the air in front of it (beyond_the_air.hpp).
+        if (atmosphere) {
+            add(std::make_unique<AfterTheSky>(*stars));
+            add(std::make_unique<AfterTheSky>(painter));
+        }
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
@@ -125,6 +132,11 @@ struct SceneRenderer::Impl {
     StarPass* stars = nullptr;
     PatternPass* pattern = nullptr;  // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
+    bool stars_see_the_sky = true;  // set_stars_see_the_sky(): a sky drawn first needs it
+    // No pass of its own (insert_pass) draws colour before the atmosphere: a sky drawn first would
+    // hide it.
+    bool nothing_else_before_the_sky = true;
+    void check_what_is_before_the_sky();
     uint64_t read_backs = 0;  // frames read back (read_back())
     bool timing = false;      // set_pass_timing()
     FrameTimings timings;     // the last timed frame
@@ -174,7 +186,17 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     for (const auto& it : f.far_to_near)
         if (it.body->kind != BodyKind::Star)
             f.casters[it.body->id] = casting->casters_for(snap, it.body->id, f.view.world_to_channel);
+    f.sky_first = atmosphere && stars_see_the_sky && nothing_else_before_the_sky && atmosphere->sky_first(f);
     return f;
+}
+
+void SceneRenderer::Impl::check_what_is_before_the_sky() {
+    nothing_else_before_the_sky = true;
+    for (const auto& p : passes) {
+        if (p.get() == atmosphere) return;
+        if (p->io().writes_color && !dynamic_cast<const BeyondTheAirPass*>(p.get()))
+            nothing_else_before_the_sky = false;
+    }
 }
 
 size_t SceneRenderer::Impl::first_pass(const Snapshot& snap) const {
@@ -234,6 +256,7 @@ void SceneRenderer::insert_pass(size_t position, std::unique_ptr<RenderPass> pas
         passes.erase(at);
         throw;
     }
+    impl_->check_what_is_before_the_sky();
 }
 
 Image SceneRenderer::render(const Snapshot& snap) {
@@ -256,7 +279,14 @@ void SceneRenderer::set_surface_with_atmosphere(bool on) {
     if (impl_->atmosphere) impl_->atmosphere->set_draw_surfaces(on);
 }
 
-void SceneRenderer::set_stars_see_the_sky(bool on) { impl_->stars->set_sky_source(on ? impl_->atmosphere : nullptr); }
+void SceneRenderer::set_stars_see_the_sky(bool on) {
+    impl_->stars->set_sky_source(on ? impl_->atmosphere : nullptr);
+    impl_->stars_see_the_sky = on;
+}
+
+void SceneRenderer::set_sky_first(bool on) {
+    if (impl_->atmosphere) impl_->atmosphere->set_sky_first(on);
+}
 
 long SceneRenderer::star_weight_renders() const { return impl_->stars->sky_weight_renders(); }
 
@@ -273,6 +303,8 @@ uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
 
 uint64_t SceneRenderer::geometry_clears() const { return impl_->targets.geometry_clears(); }
 
+uint64_t SceneRenderer::color_clears() const { return impl_->targets.color_clears(); }
+
 void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
@@ -281,7 +313,7 @@ void SceneRenderer::draw(const Snapshot& snap) {
     const size_t first = m.first_pass(snap);
     const bool geometry_read = std::any_of(m.passes.begin() + static_cast<std::ptrdiff_t>(first), m.passes.end(),
                                            [&](const auto& p) { return p->reads_geometry_in(frame); });
-    m.targets.begin_frame(geometry_read);
+    m.targets.begin_frame(geometry_read, !frame.sky_first);
     for (size_t i = first; i < m.passes.size(); ++i) {
         RenderPass* pass = m.passes[i].get();
         const auto pass_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};

@@ -57,6 +57,8 @@ public:
     uint64_t read_backs() const;
     // Frames whose G-buffer was cleared: those in which some pass reads it.
     uint64_t geometry_clears() const;
+    // Frames whose colour was cleared: all but those whose sky is drawn first (set_sky_first).
+    uint64_t color_clears() const;
     AtmosphereStats atmosphere_stats() const;
     // The newest finished glare occlusion-query results (for the frame report): after render()
     // they are normally this frame's (render() ends with a glFinish), else an earlier frame's.
@@ -77,6 +79,12 @@ public:
     // shared/star_visibility.glsl); off, the magnitude limits and the exposure alone decide (for
     // comparison: by day the stars then show over the sky).
     void set_stars_see_the_sky(bool on);
+    // Whether a frame's sky may be drawn first, before the stars, the Sun and the bodies, which
+    // then take the air in front of them themselves (on by default; AtmospherePass::sky_first,
+    // slave/passes/beyond_the_air.hpp): no colour clear and no blend for the sky. Off (or with
+    // the stars not judged against the sky), they are drawn before it and the atmosphere's draw
+    // multiplies them by its transmittance (the same image: tests/test_sky_first.cpp).
+    void set_sky_first(bool on);
     // How often the star pass rendered its per-star sky weights (passes/star_sky_weights.hpp).
     long star_weight_renders() const;
     // The last frame's timings while pass timing is on (empty before the first timed frame).

@@ -4,8 +4,9 @@
 // the body pass (SKY_HALF, the draw split into sky and ground). On a real headless EGL context
 // (llvmpipe on CI), the earth-moon scene from the ground by day with the Sun in view gives the
 // same image each way, within float rounding; from orbit, where the atmosphere covers only its
-// cap, the glare pass draws the halo and the body pass the surface. The G-buffer is cleared only
-// in a frame where some pass reads it.
+// cap, the glare pass draws the halo, and the atmosphere draws the surface from the map unless a
+// body could be in front of the air. The G-buffer is cleared only in a frame where some pass
+// reads it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +24,9 @@
 #include "master_node.hpp"
 #include "scene_renderer.hpp"
 #include "show_script.hpp"
+#include "support/earth_moon_scene.hpp"
 #include "support/headless_gl.hpp"
+#include "support/image_difference.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -32,15 +35,7 @@ namespace {
 
 EglContext& context() { return test::headless_gl("AtmosphereFusedDraws"); }
 
-// The scene and the channel are made once: the snapshot's exposure and glare models keep them.
-const SceneConfig& scene() {
-    static const SceneConfig s = [] {
-        SceneConfig c = load_scene_config(test::source_path("configs/scenes/earth-moon.json"));
-        for (auto& b : c.bodies) b.texture = "generated:" + b.name;
-        return c;
-    }();
-    return s;
-}
+const SceneConfig& scene() { return test::earth_moon_scene(); }
 
 const ClusterConfig& one_channel() {
     static const ClusterConfig cluster = [] {
@@ -56,10 +51,7 @@ const ClusterConfig& one_channel() {
     return cluster;
 }
 
-glm::dvec3 local(double az_deg, double el_deg) {
-    const double az = glm::radians(az_deg), el = glm::radians(el_deg);
-    return {std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)};
-}
+glm::dvec3 local(double az_deg, double el_deg) { return test::horizon_direction(az_deg, el_deg); }
 
 // The camera `altitude_m` above the Earth (at the origin, the camera on +z) looking at (az, el),
 // the Sun at (az 0, el 40) 1 AU away, finished as the master finishes a frame.
@@ -93,15 +85,7 @@ Image render(const SceneConfig& sc, const ClusterConfig& cl, const Snapshot& s, 
     return img;
 }
 
-// The largest difference between two images over the brightest value of the first.
-float relative_difference(const Image& a, const Image& b) {
-    float brightest = 0.0f, worst = 0.0f;
-    for (size_t i = 0; i < a.rgba.size(); ++i) {
-        brightest = std::max(brightest, std::abs(a.rgba[i]));
-        worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
-    }
-    return brightest > 0.0f ? worst / brightest : 1.0f;
-}
+using test::relative_difference;
 
 }  // namespace
 
@@ -163,14 +147,42 @@ TEST(AtmosphereFusedDraws, TheSurfaceDrawnByTheAtmosphereIsTheBodyPasss) {
     EXPECT_EQ(sky_change, 0.0);
 }
 
-TEST(AtmosphereFusedDraws, FromOrbitTheGlareAndBodyPassesDrawTheirOwn) {
+TEST(AtmosphereFusedDraws, FromOrbitTheSurfaceDrawnByTheAtmosphereIsTheBodyPasssButNotTheHalo) {
     context();
     const SceneConfig& sc = scene();
     const ClusterConfig& cl = one_channel();
+    const Snapshot s = snapshot(sc, cl, 400.0e3, -15.0);  // the limb across the channel
+    AtmosphereStats fused_stats, own_stats;
+    uint64_t fused_clears = 0, own_clears = 0;
+    const Image fused = render(sc, cl, s, true, true, fused_stats, &fused_clears);
+    const Image own = render(sc, cl, s, true, false, own_stats, &own_clears);
+    EXPECT_EQ(fused_stats.halos_added, 0);     // the atmosphere seen from outside covers only its cap
+    EXPECT_EQ(fused_stats.surfaces_drawn, 1);  // but relights the surface from the map (SKY_MAP)
+    EXPECT_EQ(own_stats.surfaces_drawn, 0);
+    EXPECT_EQ(fused_clears, 0u);  // so nothing reads the G-buffer
+    EXPECT_EQ(own_clears, 1u);
+    EXPECT_LE(relative_difference(own, fused), 1e-5f);
+}
+
+TEST(AtmosphereFusedDraws, ABodyInFrontOfTheAirFromOutsideLeavesTheSurfaceToTheBodyPass) {
+    context();
+    const SceneConfig& sc = scene();
+    const ClusterConfig& cl = one_channel();
+    // From 50 000 km, looking down at the Earth, the Moon 20 000 km away in front of its limb:
+    // outside the air, nearer than it, and over it on screen.
+    Snapshot s = snapshot(sc, cl, 5.0e7, -89.9);
+    const glm::dvec3 down(0, 0, -1), aside = glm::normalize(glm::dvec3(1, 0, 0));
+    const double limb_rad = std::asin(sc.find("earth")->radius_m / glm::length(s.camera_position_m));
+    s.bodies[sc.find("moon")->id].position_m =
+        s.camera_position_m + 2.0e7 * (std::cos(limb_rad) * down + std::sin(limb_rad) * aside);
     AtmosphereStats stats;
     uint64_t clears = 0;
-    render(sc, cl, snapshot(sc, cl, 400.0e3, 0.0), true, true, stats, &clears);
-    EXPECT_EQ(stats.halos_added, 0);     // the atmosphere seen from outside covers only its cap
-    EXPECT_EQ(stats.surfaces_drawn, 0);  // and draws no surface
-    EXPECT_EQ(clears, 1u);               // but reads the G-buffer, which is cleared
+    render(sc, cl, s, true, true, stats, &clears);
+    EXPECT_EQ(stats.surfaces_drawn, 0);
+    EXPECT_EQ(clears, 1u);  // the atmosphere reads the G-buffer: the Moon's pixels keep the Moon
+    // The same view with the Moon beyond the Earth, on the far side of the air: drawn from the map.
+    s.bodies[sc.find("moon")->id].position_m = -3.844e8 * glm::normalize(s.camera_position_m);
+    render(sc, cl, s, true, true, stats, &clears);
+    EXPECT_EQ(stats.surfaces_drawn, 1);
+    EXPECT_EQ(clears, 0u);
 }

@@ -255,7 +255,8 @@ TEST(RenderPasses, ThePipelineRunsInItsDocumentedOrder) {
     context();
     const View with_glare(true);
     EXPECT_EQ(SceneRenderer(with_glare.cluster, with_glare.channel, with_glare.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "glare halo", "atmosphere", "glare",
+              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "glare halo", "atmosphere",
+                                        "stars after the sky", "sun and bodies after the sky", "glare",
                                         "alignment pattern"}));
     View airless;
     airless.scene.bodies[kEarth].atmosphere.present = false;

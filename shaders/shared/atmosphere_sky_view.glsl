@@ -196,6 +196,27 @@ vec3 atm_sky_view_sun_perp(vec3 up, vec3 sun) {
     return l > 1e-7 ? p / l : vec3(0.0);
 }
 
+// Table coordinates of a ray from a camera inside the atmosphere (up: unit, centre -> camera;
+// mu_h: the horizon's zenith cosine; sun_perp: atm_sky_view_sun_perp(up, sun)), given its
+// ground flag: cosines and square roots only.
+vec2 atm_sky_view_inside_uv(AtmosphereParams a, vec3 v, vec3 up, float mu_h, vec3 sun_perp, bool ground, vec2 size) {
+    float mu = dot(v, up);
+    float x = atm_sky_view_x(a, false, mu_h, ground, mu);
+    float sin_t = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
+    return atm_sky_view_uv(ground, x, atm_sky_view_cos_phi(v, sin_t, sun_perp), size);
+}
+
+// Whether the ground hides what lies beyond the air along v (a camera inside the atmosphere).
+bool atm_sky_in_front_hidden(AtmosphereParams a, SkyInFront s, vec3 v) {
+    return atm_ray_hits_ground(a, s.r_m, dot(v, s.up));
+}
+
+// The table coordinates of the air in front of what lies beyond it along v (not hidden): its
+// in-scatter is atm_sky_view_inscatter there with nu = dot(v, s.sun), its transmittance part 2.
+vec2 atm_sky_in_front_uv(AtmosphereParams a, SkyInFront s, vec3 v) {
+    return atm_sky_view_inside_uv(a, v, s.up, s.mu_h, s.sun_perp, false, s.size);
+}
+
 // What a pixel needs to look its ray up, in general (inside or outside): the half, the row
 // coordinate and the azimuth. `st` is the ray's start (atm_ray_start with the same d_m, v, c_hat,
 // sun), `ground` its ground flag.

@@ -77,6 +77,19 @@ struct AtmosphereSkyViewTexel {
     vec3 third;   // sky: effective transmittance; ground: the white ground's radiance
 };
 
+// What a draw of something beyond the air (a star, the Sun, a moon) needs to take the air in
+// front of it from the sky-view table, with the camera inside the atmosphere and the sky drawn
+// before it (atmosphere_sky_view.glsl, atm_sky_in_front_*). Directions in the channel frame.
+struct SkyInFront {
+    vec3 up;            // unit, planet centre -> camera
+    float r_m;          // the camera's distance from the centre (at least the ground's + 1 m)
+    float mu_h;         // the ground horizon's zenith cosine at the camera
+    vec3 sun;           // unit, planet centre -> Sun
+    vec3 sun_perp;      // atm_sky_view_sun_perp(up, sun)
+    vec2 size;          // the table's size in texels
+    float solar_scale;  // the scene's solar irradiance over that of the model's physical spectrum
+};
+
 struct AtmosphereAnalyticFit {
     vec3 k1_rad;
     float k2;

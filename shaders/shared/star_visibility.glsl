@@ -29,21 +29,34 @@ float eye_limiting_magnitude(float background_cd_m2) {
     return offset - 5.0 * STAR_LOG10_2 * log2(1.0 + sqrt(c2 * b_nl));
 }
 
-// The sky behind a star and the air in front of it, from the sky-view table (parts t0, t1, t2 of
+// The air in front of a star and the sky behind it, from the sky-view table (parts t0, t1, t2 of
 // shared/atmosphere_sky_view.glsl) of the atmosphere around c_hat: v, c_hat (camera -> planet
 // centre) and sun (planet centre -> Sun) are unit vectors in one frame, d_m the camera's distance
-// from the centre. Returns (the sky's luminance behind the star per unit solar irradiance, the
-// luminance transmittance in front of it); x < 0 where the ray misses the air, and a ray that
-// meets the ground has transmittance 0.
-vec2 star_sky_behind(AtmosphereParams a, sampler2D t0, sampler2D t1, sampler2D t2, vec2 size, float d_m, vec3 v,
-                     vec3 c_hat, vec3 sun) {
+// from the centre. Returns (rgb: the transmittance in front of the star per sRGB channel, what the
+// atmosphere's look-up multiplies what lies beyond the air by; w: the sky's luminance behind the
+// star per unit solar irradiance); w < 0 and rgb 1 where the ray misses the air, rgb 0 where it
+// meets the ground.
+vec4 star_sky_light(AtmosphereParams a, sampler2D t0, sampler2D t1, sampler2D t2, vec2 size, float d_m, vec3 v,
+                    vec3 c_hat, vec3 sun) {
     AtmosphereRayStart st = atm_ray_start(a, d_m, v, c_hat, sun);
-    if (!st.valid) return vec2(-1.0, 1.0);
-    if (atm_ray_hits_ground(a, st.r_m, st.mu)) return vec2(0.0, 0.0);
+    if (!st.valid) return vec4(1.0, 1.0, 1.0, -1.0);
+    if (atm_ray_hits_ground(a, st.r_m, st.mu)) return vec4(0.0);
     vec2 uv = atm_sky_view_pixel_uv(a, d_m, v, c_hat, sun, st, false, size);
     vec3 sky = max(atm_sky_view_inscatter(a, t0, t1, uv, st.nu), vec3(0.0));
-    vec3 transmittance = vec3(textureLod(t2, uv, 0.0));
-    return vec2(rec709_luminance(sky), max(rec709_luminance(transmittance), 0.0));
+    return vec4(vec3(textureLod(t2, uv, 0.0)), rec709_luminance(sky));
+}
+
+// What the eye's threshold takes of star_sky_light: (the sky's luminance behind the star, the
+// luminance transmittance in front of it); x < 0 where the ray misses the air.
+vec2 star_sky_behind_of(vec4 light) {
+    if (light.w < 0.0) return vec2(-1.0, 1.0);
+    return vec2(light.w, max(rec709_luminance(vec3(light)), 0.0));
+}
+
+// The same from the table directly.
+vec2 star_sky_behind(AtmosphereParams a, sampler2D t0, sampler2D t1, sampler2D t2, vec2 size, float d_m, vec3 v,
+                     vec3 c_hat, vec3 sun) {
+    return star_sky_behind_of(star_sky_light(a, t0, t1, t2, size, d_m, v, c_hat, sun));
 }
 
 // How much of a star of visual magnitude v_mag shows, 0 to 1, given star_sky_behind's `behind`

@@ -1,5 +1,8 @@
 #include "gl/gl_buffer.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace cupola {
 
 GlVertexBuffer::GlVertexBuffer(std::vector<int> components) {
@@ -22,11 +25,14 @@ GlVertexBuffer::~GlVertexBuffer() {
     glDeleteVertexArrays(1, &vao_);
 }
 
-void GlVertexBuffer::add_float_attribute(GLuint location, GLuint buffer) {
+void GlVertexBuffer::add_float_attribute(GLuint location, GLuint buffer, int components) {
+    if (components < 1 || components > 4)
+        throw std::invalid_argument("vertex attribute " + std::to_string(location) + ": " + std::to_string(components) +
+                                    " components (1 to 4)");
     const GLuint binding = location + 1;  // binding 0 is the owned buffer's
-    glVertexArrayVertexBuffer(vao_, binding, buffer, 0, static_cast<GLsizei>(sizeof(float)));
+    glVertexArrayVertexBuffer(vao_, binding, buffer, 0, static_cast<GLsizei>(components * sizeof(float)));
     glEnableVertexArrayAttrib(vao_, location);
-    glVertexArrayAttribFormat(vao_, location, 1, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribFormat(vao_, location, components, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao_, location, binding);
 }
 

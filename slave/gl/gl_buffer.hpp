@@ -18,8 +18,9 @@ public:
     void upload(const std::vector<float>& data);
     int vertex_count() const { return count_; }
     void bind() const { glBindVertexArray(vao_); }
-    // Takes one more attribute, `location`, from another buffer (not owned): one float per vertex.
-    void add_float_attribute(GLuint location, GLuint buffer);
+    // Takes one more attribute, `location`, from another buffer (not owned): `components` floats
+    // (1 to 4) per vertex, tightly packed.
+    void add_float_attribute(GLuint location, GLuint buffer, int components = 1);
 
 private:
     GLuint vao_ = 0, vbo_ = 0;

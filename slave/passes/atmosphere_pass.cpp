@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -84,6 +85,20 @@ bool other_body_in_shell(const FrameContext& frame, const FrameBody& planet, dou
     }
     return false;
 }
+// Could a body other than the planet hide part of its atmosphere's shell from a camera outside it
+// (channel frame, double)? Conservatively: any body not wholly beyond the shell's far side whose
+// disc on screen overlaps the shell's. Without one, nothing is drawn in front of the air.
+bool body_before_shell(const FrameContext& frame, const FrameBody& planet, double top_radius_m) {
+    const double d = planet.sphere.distance_m;
+    const double shell_rad = std::asin(std::min(top_radius_m / d, 1.0));
+    for (const FrameBody& b : frame.far_to_near) {
+        if (&b == &planet || b.sphere.distance_m - b.body->radius_m > d + top_radius_m) continue;
+        const double b_rad = std::asin(std::min(b.body->radius_m / b.sphere.distance_m, 1.0));
+        const double apart = std::acos(std::clamp(glm::dot(b.sphere.center_dir, planet.sphere.center_dir), -1.0, 1.0));
+        if (apart < shell_rad + b_rad) return true;
+    }
+    return false;
+}
 }  // namespace
 
 GpuAtmosphere::GpuAtmosphere(const BodyConfig& body)
@@ -140,7 +155,7 @@ AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUnifo
       bodies_(bodies) {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
-    auto& p = lookup_programs_[variant & 63];
+    auto& p = lookup_programs_[variant & 255];
     if (!p) {
         const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
                                     std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
@@ -149,7 +164,8 @@ const GlProgram& AtmospherePass::lookup_program(int variant) {
                                     std::to_string((variant & 16)   ? 2
                                                    : (variant & 32) ? 1
                                                                     : 0) +
-                                    "\n";
+                                    "\n#define SKY_FIRST " + std::to_string((variant >> 6) & 1) + "\n#define SKY_MAP " +
+                                    std::to_string((variant >> 7) & 1) + "\n";
         p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
@@ -195,9 +211,10 @@ bool AtmospherePass::draws_surface(const FrameContext& f, const FrameBody& plane
     const auto a = atmospheres_.find(planet.body->id);
     if (a == atmospheres_.end() || !a->second->model().quality().sky_view) return false;
     if (f.casters_of(planet.body->id).count > 0) return false;  // shadows: the march, or the tint
-    const float d = camera_distance_m(f.view, *planet.state);   // as the table's input
-    if (shading::atm_camera_outside(a->second->model().shader_params(), d)) return false;
-    return !other_body_in_shell(f, planet, a->second->top_radius_m());
+    const double top_m = a->second->top_radius_m();
+    if (other_body_in_shell(f, planet, top_m)) return false;
+    const float d = camera_distance_m(f.view, *planet.state);  // as the table's input
+    return !shading::atm_camera_outside(a->second->model().shader_params(), d) || !body_before_shell(f, planet, top_m);
 }
 
 bool AtmospherePass::reads_geometry_in(const FrameContext& f) const {
@@ -236,6 +253,55 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     return out;
 }
 
+bool AtmospherePass::sky_first(const FrameContext& f) const {
+    if (!sky_first_on_) return false;
+    const FrameBody* only = nullptr;  // the only atmosphere in view (prepare's rule)
+    for (const FrameBody& b : f.far_to_near) {
+        const auto a = atmospheres_.find(b.body->id);
+        if (a == atmospheres_.end() ||
+            sphere_outside_frustum(*f.view.frustum, b.sphere.center_dir * b.sphere.distance_m,
+                                   a->second->top_radius_m()))
+            continue;
+        if (only) return false;
+        only = &b;
+    }
+    if (!only || !draws_surface(f, *only) || !star_sky(f).table) return false;
+    // From inside the air, where its sky and its ground cover every pixel.
+    const auto a = atmospheres_.find(only->body->id);
+    return !shading::atm_camera_outside(a->second->model().shader_params(), camera_distance_m(f.view, *only->state));
+}
+
+void AtmospherePass::set_sky_in_front(const GlProgram& p) const {
+    if (!frame_ || !frame_->sky_first || layers_.size() != 1)
+        throw std::logic_error("atmosphere pass: no sky was drawn first this frame to take the air in front from");
+    const Layer& l = layers_.front();
+    const FrameContext& f = *frame_;
+    const shading::AtmosphereParams& a = l.atmosphere->model().shader_params();
+    const PlanetSun ps = planet_sun(*l.body->state, f.light, l.atmosphere->model());
+    const glm::vec2 table_in = sky_view_inputs(f.view, *l.body->state, ps.dir_world);
+    // As the draw had them (set_draw_uniforms, shade() in atmosphere_lookup.frag).
+    const glm::vec3 up = -glm::vec3(l.body->sphere.center_dir), sun(f.view.world_to_channel * ps.dir_world);
+    GpuSkyViewTable& table = *l.atmosphere->sky_view();
+    set_atmosphere_params(p, a);
+    p.set("u_sky.up", up);
+    p.set("u_sky.r_m", std::max(static_cast<float>(l.body->sphere.distance_m), a.bottom_radius_m + 1.0f));
+    p.set("u_sky.mu_h", shading::atm_sky_view_horizon_mu(a, table_in.x));
+    p.set("u_sky.sun", sun);
+    p.set("u_sky.sun_perp", shading::atm_sky_view_sun_perp(up, sun));
+    p.set("u_sky.size", table.size());
+    p.set("u_sky.solar_scale", static_cast<float>(ps.solar_scale));
+    table.bind(kFirstUnit);
+    p.set("u_sky_phased", static_cast<int>(kFirstUnit));
+    p.set("u_sky_mie", static_cast<int>(kFirstUnit + 1));
+    p.set("u_sky_third", static_cast<int>(kFirstUnit + 2));
+    const bool halo = halo_ && halo_->composited();
+    p.set("u_halo_on", halo ? 1 : 0);
+    if (!halo) return;
+    halo_->texture().bind(kFirstUnit + 3);
+    p.set("u_halo", static_cast<int>(kFirstUnit + 3));
+    p.set("u_halo_map", halo_->grid().map);
+}
+
 AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     AtmosphereDrawExtras e;
     e.halo = halo_for(step);
@@ -244,6 +310,9 @@ AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
         e.surface_map = bodies_->texture(l.body->body->id);
         e.channel_to_body = BodyPass::channel_to_body(frame_->view, *l.body->state);
         e.surface_reflectance = glm::vec3(l.body->body->tint) * static_cast<float>(l.body->body->albedo);
+        e.sky_first = frame_->sky_first;
+    } else if (frame_->sky_first) {
+        throw std::logic_error("atmosphere pass: the sky is drawn first but does not draw its ground");
     }
     return e;
 }
@@ -266,18 +335,19 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         const shading::AtmosphereParams& a = m.shader_params();
         const bool outside = shading::atm_camera_outside(a, table_in.x);
         const bool illustrative = casters.count > 0;
-        const GlProgram& lookup = lookup_program((outside ? 1 : 0) | (geometry_in_air ? 2 : 0) |
-                                                 (illustrative ? 4 : 0) | (extras.halo ? 8 : 0) |
-                                                 (half == 2   ? 16
-                                                  : half == 1 ? 32
-                                                              : 0));
+        const GlProgram& lookup = lookup_program(
+            (outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0) | (extras.halo ? 8 : 0) |
+            (half == 2   ? 16
+             : half == 1 ? 32
+                         : 0) |
+            (extras.sky_first ? 64 : 0) | (extras.surface_map && outside ? 128 : 0));
         lookup.use();
         if (extras.halo) {
             extras.halo->texture().bind(kHalo);
             lookup.set("u_halo", static_cast<int>(kHalo));
             lookup.set("u_halo_map", extras.halo->grid().map);
         }
-        if (half == 2) {
+        if (extras.surface_map) {
             extras.surface_map->bind(kSurface);
             lookup.set("u_body_map", static_cast<int>(kSurface));
             lookup.set("u_channel_to_body", extras.channel_to_body);
@@ -313,9 +383,10 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
     const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());
-    if (!extras.surface_map) {
+    if (!extras.surface_map || shading::atm_camera_outside(m.shader_params(), table_in.x)) {
         // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a
-        // fan), the viewport from inside; the scissor bounds both.
+        // fan), the viewport from inside; the scissor bounds both. From outside, with the surface
+        // drawn here, the planet's map gives its reflectance (SKY_MAP).
         const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, extras, 0);
         set_draw_uniforms(p, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
         blend_draw(p, view, r, make_sphere_view(view, state.position_m, atm.top_radius_m()));
@@ -325,10 +396,10 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
         // the planet's own cap.
         const GlProgram& sky = choose_program(atm, table_in, casters, geometry_in_air, extras, 1);
         set_draw_uniforms(sky, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
-        blend_draw(sky, view, r, complement_cover(view, sphere));
+        blend_draw(sky, view, r, complement_cover(view, sphere), extras.sky_first);
         const GlProgram& ground = choose_program(atm, table_in, casters, geometry_in_air, extras, 2);
         set_draw_uniforms(ground, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
-        blend_draw(ground, view, r, sphere);
+        blend_draw(ground, view, r, sphere, extras.sky_first);
     }
     if (extras.halo) {
         extras.halo->mark_composited();
@@ -360,11 +431,14 @@ void AtmospherePass::set_draw_uniforms(const GlProgram& p, const ChannelView& vi
 }
 
 void AtmospherePass::blend_draw(const GlProgram& p, const ChannelView& view, const PixelRect& r,
-                                const SphereView& cover) {
+                                const SphereView& cover, bool replace) {
     if (r.empty()) return;
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
-    glEnablei(GL_BLEND, 0);
+    if (replace)
+        glDisablei(GL_BLEND, 0);
+    else
+        glEnablei(GL_BLEND, 0);
     glBlendFuncSeparatei(0, GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
     vao_.bind();
     draw_cover(p, view, cover);

@@ -26,6 +26,7 @@
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
 #include "gl/gl_texture.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/body_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/glare_halo_pass.hpp"
@@ -73,9 +74,10 @@ struct AtmosphereDrawExtras {
     const GlTexture* surface_map = nullptr;
     glm::mat3 channel_to_body{1.0f};
     glm::vec3 surface_reflectance{0.0f};  // albedo * tint, as the body pass writes it
+    bool sky_first = false;               // written, not blended: the frame's sky is drawn first
 };
 
-class AtmospherePass : public RenderPass, public StarSkySource {
+class AtmospherePass : public RenderPass, public StarSkySource, public SkyInFrontSource {
 public:
     using Atmospheres = std::map<uint16_t, std::unique_ptr<GpuAtmosphere>>;  // by body id
 
@@ -103,8 +105,9 @@ public:
     long surfaces_drawn() const { return surfaces_drawn_; }   // draws that drew their planet's surface
     void set_draw_surfaces(bool on) { draw_surfaces_ = on; }  // SceneRenderer::set_surface_with_atmosphere
     // Whether this frame's draw of the planet's atmosphere draws its surface too, so the body pass
-    // need not: the look-up, the camera inside the air with nothing else in it, no eclipse shadow
-    // on the planet, and a map. The ground's reflectance then comes from the map in the same draw
+    // need not: the look-up, no other body in the air, no eclipse shadow on the planet, a map, and
+    // the camera inside the air or, from outside, no other body that could be in front of the
+    // air on screen. The ground's reflectance then comes from the map in the same draw
     // (shared/sphere_view.glsl, body_map_uv) instead of the G-buffer.
     bool draws_surface(const FrameContext& frame, const FrameBody& planet) const;
     // The G-buffer is read unless every planet with an atmosphere draws its own surface.
@@ -114,6 +117,16 @@ public:
     // has no table (a march level), when an eclipse shadow falls on its planet (the table has no
     // shadow: the stars of a total eclipse must not be judged against a sunlit sky), or without a Sun.
     StarSky star_sky(const FrameContext& frame) const override;
+    // Whether this frame's sky is drawn first, before what lies beyond the air
+    // (beyond_the_air.hpp): the only atmosphere in view draws its own surface from inside the air
+    // (draws_surface), so its sky and ground together cover the channel, and there is a sky to
+    // take the air in front from (star_sky). The same on every channel that sees that atmosphere
+    // alone; a channel deciding otherwise draws the same image up to float rounding.
+    bool sky_first(const FrameContext& frame) const;
+    void set_sky_first(bool on) { sky_first_on_ = on; }  // SceneRenderer::set_sky_first
+    // The air in front of what lies beyond it, after this frame's draw (sky_first): the layer's
+    // table and its inputs, the halo if the draw added it.
+    void set_sky_in_front(const GlProgram& p) const override;
 
     // One body's atmosphere. Blends into the bound framebuffer, within the shell's screen bounds.
     // geometry: the body pass's (reflectance, distance), distance < 0 where nothing was drawn.
@@ -141,26 +154,29 @@ private:
     void set_draw_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm, const SphereView& sphere,
                            double solar_scale, const glm::dvec3& sun_dir, const GlTexture& geometry,
                            const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
-    // Blends one draw over `cover` within the scissor r (dual-source: colour = add + colour * factor).
-    void blend_draw(const GlProgram& p, const ChannelView& view, const PixelRect& r, const SphereView& cover);
+    // Blends one draw over `cover` within the scissor r (dual-source: colour = add + colour * factor),
+    // or writes it (replace: the sky drawn first, over a colour never cleared).
+    void blend_draw(const GlProgram& p, const ChannelView& view, const PixelRect& r, const SphereView& cover,
+                    bool replace = false);
     // The extras of layer `step`: its halo (halo_for) and surface (draws_surface).
     AtmosphereDrawExtras extras_for(int step) const;
     // The look-up program of a variant (bits: outside, geometry in the air, illustrative, glare
-    // halo added, the ground half with the surface, the sky half), compiled on first use.
+    // halo added, the ground half with the surface, the sky half, the sky drawn first, the surface
+    // from its map seen from outside), compiled on first use.
     const GlProgram& lookup_program(int variant);
     // The glare halo the draw of layer `step` adds: the nearest layer's, when it covers the channel.
     const GlareHaloPass* halo_for(int step) const;
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
     GlProgram program_;
-    std::unique_ptr<GlProgram> lookup_programs_[64];
+    std::unique_ptr<GlProgram> lookup_programs_[256];
     const GlareHaloPass* halo_;
     const BodyPass* bodies_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws
     long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0, surfaces_drawn_ = 0;
-    bool add_halo_ = true, draw_surfaces_ = true;
+    bool add_halo_ = true, draw_surfaces_ = true, sky_first_on_ = true;
 };
 
 }  // namespace cupola

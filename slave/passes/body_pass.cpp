@@ -14,8 +14,10 @@ double sun_irradiance(const SunLight& sun, double d_m) {
 }
 
 BodyPass::BodyPass(const SceneConfig& scene)
-    : shadowed_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n"),
-      plain_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n") {
+    : shadowed_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n#define BODY_AFTER_SKY 0\n"),
+      plain_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n#define BODY_AFTER_SKY 0\n"),
+      shadowed_after_sky_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n#define BODY_AFTER_SKY 1\n"),
+      plain_after_sky_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n#define BODY_AFTER_SKY 1\n") {
     for (const auto& b : scene.bodies) {
         if (b.kind == BodyKind::Star) continue;
         const BodyImage img = load_body_image(b.texture);
@@ -33,7 +35,8 @@ glm::mat3 BodyPass::channel_to_body(const ChannelView& view, const BodyState& st
 }
 
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
-                    const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters) {
+                    const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
+                    const SkyInFrontSource* sky) {
     const auto tex = textures_.find(body.id);
     if (tex == textures_.end()) return;
     const glm::dvec3 to_sun = sun.position_m - state.position_m;  // double, world frame
@@ -41,7 +44,9 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
     const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
 
-    const GlProgram& program = casters.count > 0 && !body.atmosphere.present ? shadowed_ : plain_;
+    const bool shadowed = casters.count > 0 && !body.atmosphere.present;
+    const GlProgram& program =
+        sky ? (shadowed ? shadowed_after_sky_ : plain_after_sky_) : (shadowed ? shadowed_ : plain_);
     program.use();
     program.set("u_channel_to_body", channel_to_body(view, state));
     program.set("u_sun_dir", glm::vec3(sun_dir));
@@ -50,6 +55,7 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program.set("u_texture", 0);
     tex->second->bind(0);
     shadows.apply(program, casters, 1);
+    if (sky) sky->set_sky_in_front(program);
     vao_.bind();
     draw_sphere(program, view, sphere);
     gl::check("body pass (" + body.name + ")");

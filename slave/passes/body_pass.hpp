@@ -12,6 +12,7 @@
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
 #include "gl/gl_texture.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/frame_context.hpp"
 #include "passes/sphere_billboard.hpp"
@@ -26,8 +27,11 @@ class BodyPass {
 public:
     explicit BodyPass(const SceneConfig& scene);  // loads every planet/moon texture once
     // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
+    // sky: the frame's sky was drawn first; the body replaces it, composed with the air in front
+    // of it (beyond_the_air.hpp), and writes no geometry (the bound framebuffer is the colour alone).
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
-              const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters);
+              const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
+              const SkyInFrontSource* sky = nullptr);
     // A body's map (linear RGB), or null for a body without one.
     const GlTexture* texture(uint16_t body_id) const;
     // The matrix body.frag takes the map's coordinates with (shared/sphere_view.glsl, body_map_uv).
@@ -35,8 +39,9 @@ public:
 
 private:
     // With eclipse shadows (a body without an atmosphere, in a shadow) and without: the atmosphere
-    // pass relights the surface of a body that has one, shadows included.
-    GlProgram shadowed_, plain_;
+    // pass relights the surface of a body that has one, shadows included. Each also drawn after
+    // the sky.
+    GlProgram shadowed_, plain_, shadowed_after_sky_, plain_after_sky_;
     GlEmptyVertexArray vao_;
     std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
 };

@@ -38,6 +38,9 @@ struct FrameContext {
     // Per planet or moon, the casters whose penumbra reaches it this frame, in the channel frame
     // relative to its centre (eclipse/shadow_casters.hpp).
     std::map<uint16_t, shading::EclipseCasters> casters;
+    // The sky is drawn first, and what lies beyond the air after it (slave/passes/beyond_the_air.hpp;
+    // decided by AtmospherePass::sky_first): the colour is then not cleared.
+    bool sky_first = false;
 
     const shading::EclipseCasters& casters_of(uint16_t body) const { return casters.at(body); }
 };

@@ -1,5 +1,7 @@
 #include "passes/painter_pass.hpp"
 
+#include <stdexcept>
+
 #include "passes/atmosphere_pass.hpp"
 
 namespace cupola {
@@ -7,18 +9,23 @@ namespace cupola {
 PainterPass::PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows)
     : shadows_(shadows), bodies_(scene) {}
 
-int PainterPass::prepare(const FrameContext& frame) {
+int PainterPass::prepare_at(const FrameContext& frame, bool after_sky) {
+    if (after_sky && !atmosphere_)
+        throw std::logic_error(
+            "sun and bodies: drawn after the sky without an atmosphere to take the air in front from");
     frame_ = &frame;
+    after_sky_ = after_sky;
     return 1;
 }
 
 void PainterPass::draw(const PassInputs&, int) {
     const FrameContext& f = *frame_;
+    const SkyInFrontSource* sky = after_sky_ ? atmosphere_ : nullptr;
     for (const FrameBody& it : f.far_to_near) {
         if (it.body->kind == BodyKind::Star)
-            sun_.draw(f.view, *it.body, it.sphere);
+            sun_.draw(f.view, *it.body, it.sphere, sky);
         else if (!atmosphere_ || !atmosphere_->draws_surface(f, it))
-            bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id));
+            bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id), sky);
     }
 }
 

@@ -2,26 +2,28 @@
 // The scene's stars (SunPass) and its planets and moons (BodyPass) as one pass, far to near
 // (painter's order), into the colour and the G-buffer. Each disc is opaque and exact in angle,
 // so no depth buffer is needed between bodies; a Sun behind a planet is covered by it and a
-// planet behind the Sun by the Sun, whatever the order of the scene's bodies.
+// planet behind the Sun by the Sun, whatever the order of the scene's bodies. In a frame whose sky
+// is drawn first it draws after the atmosphere, each disc taking the air in front of it
+// (beyond_the_air.hpp), into the colour alone.
 #include <string>
 
 #include "config/scene_config.hpp"
 #include "passes/body_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
-#include "passes/render_pass.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/sun_pass.hpp"
 
 namespace cupola {
 
 class AtmospherePass;
 
-class PainterPass : public RenderPass {
+class PainterPass : public BeyondTheAirPass {
 public:
     PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows);
 
     std::string name() const override { return "sun and bodies"; }
     PassIo io() const override { return {.writes_color = true, .writes_geometry = true}; }
-    int prepare(const FrameContext& frame) override;
+    int prepare_at(const FrameContext& frame, bool after_sky) override;
     void draw(const PassInputs& in, int step) override;
 
     // The planets' and moons' drawer, which the glare probe draws the occluders with.
@@ -36,6 +38,7 @@ private:
     BodyPass bodies_;
     const FrameContext* frame_ = nullptr;
     const AtmospherePass* atmosphere_ = nullptr;
+    bool after_sky_ = false;
 };
 
 }  // namespace cupola

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
@@ -25,7 +26,7 @@ StarPass::StarPass(const StarFieldConfig& config, std::vector<Star> stars)
     }
     vertices_.upload(data);
     sky_weights_ = std::make_unique<StarSkyWeights>(dir_and_magnitude);
-    vertices_.add_float_attribute(3, sky_weights_->buffer());
+    vertices_.add_float_attribute(3, sky_weights_->buffer(), 4);
 }
 
 double StarPass::visible_magnitude(double exposure) const {
@@ -35,8 +36,9 @@ double StarPass::visible_magnitude(double exposure) const {
     return -2.5 * std::log10(min_flux / config_.zero_mag_flux);
 }
 
-int StarPass::prepare(const FrameContext& frame) {
+int StarPass::prepare_at(const FrameContext& frame, bool after_sky) {
     view_ = &frame.view;
+    after_sky_ = after_sky;
     exposure_ = frame.snap->settings.exposure;
     occluder_ = largest_occluder(frame);
     sky_ = sky_source_ ? sky_source_->star_sky(frame) : StarSky{};
@@ -60,10 +62,12 @@ StarOccluder StarPass::largest_occluder(const FrameContext& frame) {
     return o;
 }
 
-void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_, occluder_, sky_); }
+void StarPass::draw(const PassInputs&, int) { draw(*view_, magnitude_limit_, exposure_, occluder_, sky_, after_sky_); }
 
 void StarPass::draw(const ChannelView& view, double magnitude_limit, double exposure, StarOccluder occluder,
-                    const StarSky& sky) {
+                    const StarSky& sky, bool after_sky) {
+    if (after_sky && !sky.table)
+        throw std::logic_error("star pass: drawn after the sky without the sky's table to take the air in front from");
     const auto count = static_cast<GLsizei>(
         std::upper_bound(magnitudes_.begin(), magnitudes_.end(), static_cast<float>(magnitude_limit)) -
         magnitudes_.begin());
@@ -73,7 +77,7 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
         sky_weights_->update(sky, count);
     }
     program_.use();
-    program_.set("u_sky_on", sky.table ? 1 : 0);
+    program_.set("u_sky_on", !sky.table ? 0 : after_sky ? 2 : 1);
     const ChannelFrustum& f = *view.frustum;
     const double sigma = config_.psf_sigma_arcmin / 60.0 * std::numbers::pi / 180.0;
     const double ppt_x = f.width() / (f.tan_left() + f.tan_right());

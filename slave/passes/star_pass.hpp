@@ -8,7 +8,7 @@
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
 #include "passes/channel_view.hpp"
-#include "passes/render_pass.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/star_sky.hpp"
 #include "passes/star_sky_weights.hpp"
 #include "scene/star_catalog.hpp"
@@ -22,7 +22,7 @@ struct StarOccluder {
     float radius_rad = 0.0f;
 };
 
-class StarPass : public RenderPass {
+class StarPass : public BeyondTheAirPass {
 public:
     // stars: any order (sorted here by magnitude so a limit is a prefix).
     StarPass(const StarFieldConfig& config, std::vector<Star> stars);
@@ -33,8 +33,10 @@ public:
     // opaque) is not drawn. With a sky (StarSky::table), each star shows only as far as the eye
     // could see it against the sky behind it (shared/star_visibility.glsl): fading in over half a
     // magnitude above the threshold, not drawn below it; the table is brought up to date first.
+    // after_sky (with a sky): the sky was drawn first, and each star also takes the air's
+    // transmittance in front of it (beyond_the_air.hpp).
     void draw(const ChannelView& view, double magnitude_limit, double exposure = 0.0, StarOccluder occluder = {},
-              const StarSky& sky = {});
+              const StarSky& sky = {}, bool after_sky = false);
     // The largest body on screen of a frame, not a star and not around the camera.
     static StarOccluder largest_occluder(const FrameContext& frame);
     static constexpr double kFixedReachSigma = 4.0;
@@ -46,7 +48,7 @@ public:
     // by star. Skipped (0 draws) when no star is left.
     std::string name() const override { return "stars"; }
     PassIo io() const override { return {.writes_color = true}; }
-    int prepare(const FrameContext& frame) override;
+    int prepare_at(const FrameContext& frame, bool after_sky) override;
     void draw(const PassInputs& in, int step) override;
 
     // The faintest magnitude whose PSF peak (flux / (2 pi sigma^2), the Gaussian's centre) reaches
@@ -69,6 +71,7 @@ private:
     std::unique_ptr<StarSkyWeights> sky_weights_;  // one texel per star, in vertex order
     const StarSkySource* sky_source_ = nullptr;
     StarSky sky_;
+    bool after_sky_ = false;
 };
 
 }  // namespace cupola

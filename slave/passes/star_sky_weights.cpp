@@ -28,7 +28,7 @@ StarSkyWeights::StarSkyWeights(const std::vector<glm::vec4>& stars)
       fbo_({&weights_}),
       program_("fullscreen.vert", "star_weights.frag") {
     glCreateBuffers(1, &buffer_);
-    const std::vector<float> ones(static_cast<size_t>(weights_.width() * weights_.height()), 1.0f);
+    const std::vector<float> ones(static_cast<size_t>(weights_.width() * weights_.height()) * 4, 1.0f);
     glNamedBufferData(buffer_, static_cast<GLsizeiptr>(ones.size() * sizeof(float)), ones.data(), GL_DYNAMIC_COPY);
     glCreateBuffers(1, &draw_command_);
     const GLuint none[4] = {0, 1, 0, 0};
@@ -62,11 +62,11 @@ bool StarSkyWeights::update(const StarSky& sky, int star_count) {
     vao_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);  // the star draw reads the command this wrote
-    // Into the attribute buffer, on the GPU: the texture's red channel, row by row.
+    // Into the attribute buffer, on the GPU: the texels, row by row.
     glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer_);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(weights_.id(), 0, GL_RED, GL_FLOAT,
-                      static_cast<GLsizei>(weights_.width() * weights_.height() * sizeof(float)), nullptr);
+    glGetTextureImage(weights_.id(), 0, GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(weights_.width() * weights_.height() * 4 * sizeof(float)), nullptr);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     gl::check("star sky weights");
     key_ = key;

@@ -1,7 +1,8 @@
 #pragma once
 // How much of each catalogue star the eye sees against the sky behind it: one texel per star
 // (shaders/star_weights.frag; texel i is star i of the star pass's vertex order, x = i % kWidth,
-// y = i / kWidth), copied on the GPU into a buffer of one float per star that the star sprites take
+// y = i / kWidth), copied on the GPU into a buffer of four floats per star (the weight, and the
+// weight times the air's transmittance in front of the star) that the star sprites take
 // as a vertex attribute (shaders/stars.vert): a CPU rasteriser pays far more for a texture fetch
 // per vertex, let alone a sky look-up per star per frame, than for an attribute. The same pass
 // writes the star draw's indirect command: its count is one past the last star with any weight.
@@ -32,7 +33,9 @@ public:
     // first star_count stars (the others get weight 0); restores the framebuffer binding and the
     // viewport. Returns true when it rendered.
     bool update(const StarSky& sky, int star_count);
-    GLuint buffer() const { return buffer_; }  // one float per star (and per padding texel)
+    // Four floats per star (and per padding texel): the weight, and the weight times the air's
+    // transmittance in front of the star per sRGB channel (for a star drawn after the sky).
+    GLuint buffer() const { return buffer_; }
     // The indirect command of glDrawArraysIndirect (count, 1, 0, 0) for the stars with weight.
     GLuint draw_command() const { return draw_command_; }
     ~StarSkyWeights();

@@ -6,6 +6,7 @@
 #include "config/scene_config.hpp"
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
+#include "passes/beyond_the_air.hpp"
 #include "passes/sphere_billboard.hpp"
 
 namespace cupola {
@@ -16,10 +17,14 @@ constexpr double kCoronaExtent = 6.0;
 class SunPass {
 public:
     SunPass();
-    void draw(const ChannelView& view, const BodyConfig& body, const SphereView& sphere);
+    // Adds the disc and the corona into the bound framebuffer (and the disc's geometry). sky: the
+    // frame's sky was drawn first, and both take the air's transmittance in front of them from it
+    // (beyond_the_air.hpp); the bound framebuffer is then the colour alone.
+    void draw(const ChannelView& view, const BodyConfig& body, const SphereView& sphere,
+              const SkyInFrontSource* sky = nullptr);
 
 private:
-    GlProgram program_;
+    GlProgram program_, after_sky_;
     GlEmptyVertexArray vao_;
 };
 
