@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <glm/gtc/quaternion.hpp>
 
 #include "atmosphere/auto_exposure.hpp"
@@ -153,6 +154,16 @@ TEST(SkyFirst, TheMoonThroughTheAirIsTheSameAndTheGroundHidesItsLowerHalf) {
     const int above = with.height / 2 - 6, below = with.height / 2 + 9;
     EXPECT_GT(with.pixel(cx, above)[1], 2.0f * bare.image.pixel(cx, above)[1]);
     for (int x = 0; x < with.width; ++x) EXPECT_EQ(with.pixel(x, below)[1], bare.image.pixel(x, below)[1]) << x;
+    // To look at (docs/images/sky-first-moonrise.png): CUPOLA_TEST_IMAGES=DIR writes both orders.
+    if (const char* dir = std::getenv("CUPOLA_TEST_IMAGES")) {
+        const double exposure = snapshot(cl, v).settings.exposure;
+        FrameMetadata meta;
+        meta.channel_name = "sky-first";
+        write_frame(dir, first.image, meta, {"png"}, exposure);
+        meta.channel_name = "sky-last";
+        meta.frame = 1;
+        write_frame(dir, last.image, meta, {"png"}, exposure);
+    }
 }
 
 TEST(SkyFirst, AtNightTheStarsTakeTheAirInFrontOfThem) {
