@@ -1,8 +1,12 @@
 #include "frame_barrier.hpp"
 
+#include <algorithm>
+
 namespace cupola {
 
-FrameBarrier::FrameBarrier(const std::vector<int>& ids, std::chrono::milliseconds timeout) : timeout_(timeout) {
+FrameBarrier::FrameBarrier(const std::vector<int>& ids, std::chrono::milliseconds timeout,
+                           std::chrono::milliseconds first_timeout)
+    : timeout_(timeout), first_timeout_(std::max(timeout, first_timeout)) {
     for (int id : ids) channels_[id] = Entry{};
 }
 
@@ -22,6 +26,7 @@ void FrameBarrier::on_restart(int channel, Clock::time_point now) {
     if (it == channels_.end()) return;
     it->second.state = ChannelState::Live;
     it->second.reported = false;
+    it->second.ever_reported = false;  // a new process: its first frame compiles its shaders again
     it->second.expected_since = now;
 }
 
@@ -38,6 +43,7 @@ bool FrameBarrier::on_report(int channel, uint64_t frame, Clock::time_point now)
     if (it == channels_.end() || frame != frame_) return false;
     on_alive(channel, now);
     it->second.reported = true;
+    it->second.ever_reported = true;
     return true;
 }
 
@@ -51,7 +57,7 @@ std::vector<int> FrameBarrier::pending() const {
 std::vector<int> FrameBarrier::expire(Clock::time_point now) {
     std::vector<int> out;
     for (auto& [id, e] : channels_) {
-        if (e.state == ChannelState::Live && !e.reported && now - e.expected_since >= timeout_) {
+        if (e.state == ChannelState::Live && !e.reported && now >= deadline(e)) {
             e.state = ChannelState::Dropped;
             out.push_back(id);
         }
@@ -62,8 +68,7 @@ std::vector<int> FrameBarrier::expire(Clock::time_point now) {
 FrameBarrier::Clock::time_point FrameBarrier::next_deadline() const {
     auto best = Clock::time_point::max();
     for (const auto& [id, e] : channels_)
-        if (e.state == ChannelState::Live && !e.reported && e.expected_since + timeout_ < best)
-            best = e.expected_since + timeout_;
+        if (e.state == ChannelState::Live && !e.reported && deadline(e) < best) best = deadline(e);
     return best;
 }
 

@@ -3,7 +3,9 @@
 // Frame N+1 may start when every live channel has reported frame N. A live channel that stays
 // silent for `timeout` after a frame started is dropped so the rest go on; any authentic message
 // from a dropped (or never seen) channel makes it live again and it is expected for the
-// current frame.
+// current frame. Until a channel's first report since it was first seen or its process
+// restarted, `first_timeout` applies instead (at least `timeout`): a node's first frame compiles
+// its shaders, which on a software renderer under load takes longer than a steady frame.
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -17,7 +19,8 @@ class FrameBarrier {
 public:
     using Clock = std::chrono::steady_clock;
 
-    FrameBarrier(const std::vector<int>& channel_ids, std::chrono::milliseconds timeout);
+    FrameBarrier(const std::vector<int>& channel_ids, std::chrono::milliseconds timeout,
+                 std::chrono::milliseconds first_timeout = std::chrono::milliseconds(0));
 
     // Returns true when the channel was absent or dropped and is now live again.
     bool on_alive(int channel, Clock::time_point now);
@@ -45,10 +48,15 @@ private:
     struct Entry {
         ChannelState state = ChannelState::Absent;
         bool reported = false;
+        bool ever_reported = false;  // since the channel was first seen or its process restarted
         Clock::time_point expected_since{};
     };
+    // When a live channel that has not reported is dropped.
+    Clock::time_point deadline(const Entry& e) const {
+        return e.expected_since + (e.ever_reported ? timeout_ : first_timeout_);
+    }
     std::map<int, Entry> channels_;
-    std::chrono::milliseconds timeout_;
+    std::chrono::milliseconds timeout_, first_timeout_;
     uint64_t frame_ = 0;
 };
 

@@ -219,7 +219,8 @@ struct MasterNode::Loop {
           ids(channel_ids(cluster)),
           protocol(ids, session,
                    {std::chrono::milliseconds(cluster.network.resend_interval_ms),
-                    std::chrono::milliseconds(cluster.network.channel_timeout_ms), cluster.network.swap_lock}),
+                    std::chrono::milliseconds(cluster.network.channel_timeout_ms), cluster.network.swap_lock,
+                    std::chrono::milliseconds(cluster.network.first_frame_timeout_ms)}),
           stats(n.options_.stats_file, "master"),
           director(cluster, n.scene_, n.show_),
           glare_sharing(cluster) {}

@@ -73,3 +73,33 @@ TEST(FrameBarrier, UnknownChannelsAreIgnored) {
     b.start_frame(0, t0);
     EXPECT_TRUE(b.complete());  // nobody live: nothing to wait for
 }
+
+// A channel's first frame after it was first seen, or after its process restarted, compiles its
+// shaders: it has the longer first timeout; from its first report on, the usual one.
+TEST(FrameBarrier, AChannelsFirstFrameHasTheLongerTimeout) {
+    FrameBarrier b({0, 1}, 100ms, 1000ms);
+    const auto t0 = Clock::time_point{} + 1h;
+    b.on_alive(0, t0);
+    b.on_alive(1, t0);
+    b.start_frame(0, t0);
+    b.on_report(0, 0, t0 + 50ms);
+    EXPECT_TRUE(b.expire(t0 + 999ms).empty());  // channel 1 is still in its first frame
+    EXPECT_EQ(b.next_deadline(), t0 + 1000ms);
+    b.on_report(1, 0, t0 + 999ms);
+    b.start_frame(1, t0 + 1s);
+    b.on_report(0, 1, t0 + 1s + 10ms);
+    EXPECT_EQ(b.next_deadline(), t0 + 1100ms);  // it has reported once: the usual timeout
+    EXPECT_EQ(b.expire(t0 + 1100ms), std::vector<int>{1});
+    // A new process for channel 1: its first frame again.
+    b.on_restart(1, t0 + 1200ms);
+    b.start_frame(2, t0 + 1200ms);
+    b.on_report(0, 2, t0 + 1210ms);
+    EXPECT_TRUE(b.expire(t0 + 2199ms).empty());
+    EXPECT_EQ(b.expire(t0 + 2200ms), std::vector<int>{1});
+    // Never shorter than the usual timeout.
+    FrameBarrier short_first({0}, 100ms, 10ms);
+    short_first.on_alive(0, t0);
+    short_first.start_frame(0, t0);
+    EXPECT_TRUE(short_first.expire(t0 + 99ms).empty());
+    EXPECT_EQ(short_first.expire(t0 + 100ms), std::vector<int>{0});
+}

@@ -90,6 +90,7 @@ NetworkConfig read_network(const JsonReader& r) {
     if (n.report_port == n.snapshot_port) r.fail("report_port", "must differ from snapshot_port");
     n.max_datagram_bytes = static_cast<int>(r.declared_integer("max_datagram_bytes"));
     n.channel_timeout_ms = static_cast<int>(r.declared_integer("channel_timeout_ms"));
+    n.first_frame_timeout_ms = static_cast<int>(r.declared_integer("first_frame_timeout_ms"));
     n.resend_interval_ms = static_cast<int>(r.declared_integer("resend_interval_ms"));
     n.hello_wait_ms = static_cast<int>(r.declared_integer("hello_wait_ms"));
     n.strict_key_permissions = r.declared_boolean("strict_key_permissions");

@@ -28,6 +28,7 @@ struct NetworkConfig {
     uint16_t report_port = 47601;              // slaves -> master
     int max_datagram_bytes = 1400;             // fragments snapshots above this
     int channel_timeout_ms = 2000;             // silent channel is dropped after this
+    int first_frame_timeout_ms = 10000;        // ... or this, before its first report (shader compiles)
     int resend_interval_ms = 100;              // snapshot re-sent while the barrier waits
     int hello_wait_ms = 15000;                 // master waits this long for all channels at start
     bool strict_key_permissions = false;       // a key file open to every user: error, not warning

@@ -9,7 +9,10 @@
 namespace cupola {
 
 MasterSession::MasterSession(const std::vector<int>& channel_ids, uint64_t session, MasterTimings timings)
-    : ids_(channel_ids), session_(session), timings_(timings), barrier_(channel_ids, timings.channel_timeout) {}
+    : ids_(channel_ids),
+      session_(session),
+      timings_(timings),
+      barrier_(channel_ids, timings.channel_timeout, timings.first_frame_timeout) {}
 
 MasterActions MasterSession::on_message(const ReceivedMessage& rm, Clock::time_point now) {
     MasterActions out;

@@ -45,6 +45,9 @@ struct MasterTimings {
     std::chrono::milliseconds resend_interval{100};
     std::chrono::milliseconds channel_timeout{2000};
     bool swap_lock = false;  // send a present once the barrier is complete (network.swap_lock)
+    // Before a channel's first report since it joined or restarted; never less than
+    // channel_timeout (0: the same). network.first_frame_timeout_ms.
+    std::chrono::milliseconds first_frame_timeout{0};
 };
 
 enum class MasterPhase { Joining, Frame, Between, Quitting, Done };
