@@ -15,6 +15,7 @@ PACKAGES=(
   libvalijson-dev                              # JSON Schema validation of the configs (configs/schema/)
   libsodium-dev                                # HMAC-SHA256 packet authentication, BLAKE2b hashes
   liberfa-dev                                  # time scales and Earth rotation (ERFA)
+  libnova-dev                                  # planet and Pluto series (VSOP87, Meeus ch. 37)
   libx11-dev libxrandr-dev libdrm-dev libgbm-dev # live outputs: window sink (X11, RandR), KMS sink (DRM, GBM)
   xvfb xauth                                   # a real X server for the window-sink tests
   libzip-dev libpugixml-dev                    # MPCDI calibration packages: zip container, mpcdi.xml

@@ -15,6 +15,10 @@ uniform vec3 u_center_dir;       // unit, channel frame
 uniform float u_sin_alpha;       // R / d
 uniform vec4 u_distances_m;      // (d, R, d - R, d + R) in metres, from the CPU in double
 uniform mat3 u_channel_to_body;
+#if BODY_OBLATE
+uniform mat3 u_to_sphere;        // channel frame -> stretched frame (symmetric)
+uniform mat3 u_from_sphere;      // its inverse
+#endif
 uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards the sun
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
 uniform vec3 u_reflectance;      // albedo * tint
@@ -54,24 +58,41 @@ vec4 through_the_air(vec3 v, vec3 radiance) {
 
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+#if BODY_OBLATE
+    vec3 vs = u_to_sphere * v;
+    float stretch = length(vs);
+    vs /= stretch;
+    vec4 hit = sphere_hit(vs, u_center_dir, u_sin_alpha);
+    if (hit.w < 0.0) {
+        discard;
+    }
+    vec3 n = normalize(u_to_sphere * hit.xyz);
+    vec3 surface = u_from_sphere * hit.xyz;  // the hit point / R, from the centre
+#else
     vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
     if (hit.w < 0.0) {
         discard;
     }
     vec3 n = hit.xyz;
+    vec3 surface = n;
+#endif
     vec3 albedo_map = textureLod(u_texture, body_map_uv(u_channel_to_body, n), 0.0).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     vec3 light = vec3(1.0);
 #if BODY_ECLIPSE
     if (u_ecl.count > 0 && cos_i > 0.0) {
-        light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, n * u_distances_m.y);
+        light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, surface * u_distances_m.y);
     }
 #endif
 #if BODY_AFTER_SKY
     frag_color = through_the_air(v, u_lit * cos_i * albedo_map * light);
 #else
     frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
+#if BODY_OBLATE
+    float distance_m = sphere_hit_distance(vs, u_center_dir, hit.w, u_distances_m) / stretch;
+#else
     float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
+#endif
     frag_geometry = vec4(u_reflectance * albedo_map, distance_m);
     gl_FragDepth = log_depth(distance_m);  // only a depth target (the glare probe) keeps it
 #endif

@@ -137,9 +137,10 @@ TEST(SkyPositions, MoonAgreesWithMeeus47a) {
 
 TEST(SkyPositions, VenusAgreesWithMeeus33a) {
     const SkyPosition v = sky_position("venus", tt_from_jd(2448976.5));
-    EXPECT_NEAR(ra_diff_arcsec(v.ra_deg, (21.0 + 4.0 / 60 + 41.454 / 3600) * 15.0), 0.0, 7.0);  // eraPlan94: 7" max
-    EXPECT_NEAR(arcsec(v.dec_deg - -(18.0 + 53.0 / 60 + 16.84 / 3600)), 0.0, 7.0);
-    EXPECT_THROW(sky_position("pluto", 0.0), std::invalid_argument);
+    // Meeus computes with the full VSOP87, as Cupola does (scene/planet_series).
+    EXPECT_NEAR(ra_diff_arcsec(v.ra_deg, (21.0 + 4.0 / 60 + 41.454 / 3600) * 15.0), 0.0, 1.5);
+    EXPECT_NEAR(arcsec(v.dec_deg - -(18.0 + 53.0 / 60 + 16.84 / 3600)), 0.0, 1.5);
+    EXPECT_THROW(sky_position("vulcan", 0.0), std::invalid_argument);
     for (const auto& name : sky_body_names()) EXPECT_GT(sky_position(name, 0.0).distance_km, 3.0e5) << name;
 }
 
@@ -160,10 +161,11 @@ TEST(SceneEphemeris, WorldPositionsArePlacedForAGeocentricViewer) {
     const glm::dvec3 a = glm::normalize(m.position_m - s.position_m), rel = e.position_m - m.position_m;
     const double miss = glm::length(rel - glm::dot(rel, a) * a) / kEarthEquatorialRadius_m;
     EXPECT_NEAR(miss, std::abs(solar_eclipse_at(t).gamma), 1e-6);
-    // The Moon is tidally locked: its +X faces the Earth.
+    // The Moon keeps its near side (+X, longitude 0) to the Earth, within its libration (< 10 deg);
+    // the libration itself is tested in test_body_rotation.
     const glm::dvec3 x = glm::mat3_cast(m.orientation)[0];
-    EXPECT_NEAR(glm::dot(x, glm::normalize(e.position_m - m.position_m)), 1.0, 1e-12);
-    BodyConfig pluto;
-    pluto.ephemeris = "pluto";
-    EXPECT_THROW(body_state(pluto, t), std::invalid_argument);
+    EXPECT_GT(glm::dot(x, glm::normalize(e.position_m - m.position_m)), std::cos(glm::radians(10.0)));
+    BodyConfig vulcan;
+    vulcan.ephemeris = "vulcan";
+    EXPECT_THROW(body_state(vulcan, t), std::invalid_argument);
 }

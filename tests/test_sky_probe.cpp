@@ -57,14 +57,14 @@ TEST(SkyProbe, AnswersOneJsonObjectPerQueryLine) {
 
 TEST(SkyProbe, BadLinesAndBadArgumentsAreNamed) {
     const auto [status, out] =
-        run("printf 'position pluto 2024-01-01T00:00:00Z\\neclipse noon\\nwobble\\n"
+        run("printf 'position vulcan 2024-01-01T00:00:00Z\\neclipse noon\\nwobble\\n"
             "position sun\\nposition sun 2024-04-08T18:17:00Z\\n' | " +
             kSky);
     EXPECT_EQ(status, 2);
     const auto j = json_lines(out);
     ASSERT_EQ(j.size(), 5u) << out;
     EXPECT_EQ(j[0]["line"], 1);
-    EXPECT_NE(j[0]["error"].get<std::string>().find("line 1: unknown body 'pluto'"), std::string::npos) << j[0];
+    EXPECT_NE(j[0]["error"].get<std::string>().find("line 1: unknown body 'vulcan'"), std::string::npos) << j[0];
     EXPECT_NE(j[1]["error"].get<std::string>().find("\"noon\" is not an ISO 8601 UTC time"), std::string::npos) << j[1];
     EXPECT_NE(j[2]["error"].get<std::string>().find("unknown query 'wobble'"), std::string::npos) << j[2];
     EXPECT_NE(j[3]["error"].get<std::string>().find("'position' takes BODY TIME"), std::string::npos) << j[3];
@@ -78,4 +78,28 @@ TEST(SkyProbe, BadLinesAndBadArgumentsAreNamed) {
     const auto [s3, help] = run(kSky + " --help");
     EXPECT_EQ(s3, 0);
     EXPECT_NE(help.find("next-lunar"), std::string::npos);
+}
+
+TEST(SkyProbe, AnswersForEveryBodyOfTheSolarSystemScene) {
+    // Every body of configs/scenes/solar-system.json but the Earth (the probe is geocentric).
+    const auto scene = nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/solar-system.json")));
+    std::string queries;
+    std::vector<std::string> bodies;
+    for (const auto& b : scene["bodies"]) {
+        if (b["ephemeris"] == "earth") continue;
+        bodies.push_back(b["ephemeris"]);
+        queries += "position " + bodies.back() + " 2026-12-03T20:00:00Z\\n";
+    }
+    ASSERT_EQ(bodies.size(), 10u);
+    const auto [status, out] = run("printf '" + queries + "' | " + kSky);
+    ASSERT_EQ(status, 0) << out;
+    const auto j = json_lines(out);
+    ASSERT_EQ(j.size(), bodies.size()) << out;
+    for (size_t i = 0; i < j.size(); ++i) {
+        EXPECT_GT(j[i]["distance_km"].get<double>(), 3.0e5) << bodies[i];
+        EXPECT_GE(j[i]["ra_deg"].get<double>(), 0.0) << bodies[i];
+        EXPECT_LT(j[i]["ra_deg"].get<double>(), 360.0) << bodies[i];
+    }
+    // Pluto in late 2026 is in Capricornus/Aquarius, about 38 AU away.
+    EXPECT_NEAR(j[9]["distance_km"].get<double>() / 1.495978707e8, 35.9, 1.5) << j[9];
 }

@@ -144,6 +144,8 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
     c.kind = kind == "star" ? BodyKind::Star : kind == "planet" ? BodyKind::Planet : BodyKind::Moon;
     c.ephemeris = b.declared_choice("ephemeris");
     c.radius_m = b.declared_number("radius_m");
+    c.flattening = b.declared_number("flattening");
+    if (c.flattening > 0.0 && c.kind == BodyKind::Star) b.fail("flattening", "a star is drawn as a sphere");
     c.texture = read_texture(b, dir, c.name);
     if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
     c.albedo = b.declared_number("albedo");
@@ -159,6 +161,8 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
     if (auto a = b.optional_child("atmosphere")) {
         if (c.kind == BodyKind::Star) a->fail("preset", "a star cannot have an atmosphere");
         c.atmosphere = read_atmosphere(*a, c);
+        if (c.flattening > 0.0)
+            b.fail("flattening", "a body with an atmosphere is drawn as a sphere (its air is a spherical shell)");
     }
     b.reject_unknown_keys();
     return c;

@@ -29,8 +29,9 @@ struct BodyConfig {
     uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
     BodyKind kind = BodyKind::Planet;
-    std::string ephemeris;  // analytic model: "sun", "earth" or "moon"
-    double radius_m = 1.0;
+    std::string ephemeris;          // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto"
+    double radius_m = 1.0;          // equatorial radius (the mean one for a sphere)
+    double flattening = 0.0;        // (a - c) / a: the polar radius is radius_m * (1 - flattening)
     std::string texture;            // resolved image path, or "generated:<name>"
     glm::vec3 tint{1.0f};           // multiplies the texture (or the disc colour of a star)
     double albedo = 0.3;            // planets and moons

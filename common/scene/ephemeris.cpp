@@ -1,5 +1,7 @@
 #include "scene/ephemeris.hpp"
 
+#include "scene/body_rotation.hpp"
+
 #include <erfa.h>
 #include <erfam.h>
 
@@ -22,14 +24,10 @@ BodyState body_state(const BodyConfig& body, double t_tt_s) {
     }
     const glm::dvec3 rel = apparent_geocentric_m(body.ephemeris, t_tt_s);
     s.position_m = earth + rel;
-    if (body.ephemeris == "moon") {
-        // Tidally locked: the body's +X (prime meridian) faces the Earth, +Z near the ecliptic pole.
-        const double eps = eraObl06(ERFA_DJ00, 0.0);  // mean obliquity of J2000
-        const glm::dvec3 pole(0.0, -std::sin(eps), std::cos(eps));
-        const glm::dvec3 x = glm::normalize(-rel);
-        const glm::dvec3 y = glm::normalize(glm::cross(pole, x));
-        const glm::dvec3 z = glm::cross(x, y);
-        s.orientation = glm::normalize(glm::quat_cast(glm::dmat3(x, y, z)));
+    if (has_iau_rotation(body.ephemeris)) {
+        // Turned as it was when the light left it.
+        const double light_time_s = glm::length(rel) / ERFA_CMPS;
+        s.orientation = body_to_icrs(iau_rotation_elements(body.ephemeris, t_tt_s - light_time_s));
     }
     return s;
 }

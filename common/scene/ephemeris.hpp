@@ -11,15 +11,15 @@
 // Orientations map the body frame to the world frame:
 //   earth: body frame = ITRS (x toward Greenwich on the equator, z to the north pole), from the
 //          GCRS->ITRS matrix of eraC2t06a (UT1 from sim_time, no polar motion), transposed;
-//   moon:  tidally locked, +X toward the Earth, +Z near the J2000 ecliptic pole;
-//   sun and planets: identity.
+//   sun, moon, planets and Pluto: the IAU rotation elements (scene/body_rotation), at the time the
+//          light left the body (light time from the Earth's centre).
 #include "config/scene_config.hpp"
 #include "scene/sky_positions.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
 
-// body.ephemeris is one of "sun", "earth", "moon", "mercury", ..., "neptune"; t in seconds since
+// body.ephemeris is one of "sun", "earth", "moon", "mercury", ..., "neptune", "pluto"; t in seconds since
 // J2000 TT. Throws std::invalid_argument for another name.
 BodyState body_state(const BodyConfig& body, double t_tt_s);
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "scene/planet_series.hpp"
 #include "scene/sim_time.hpp"
 
 namespace cupola {
@@ -26,7 +27,7 @@ EarthState earth_state(double d) {
     return {vec(pvh[0]), vec(pvb[0]), vec(pvb[1])};
 }
 
-// Body index: 0 Sun, 1 Moon, 2.. planets in eraPlan94 numbering order (skipping the EMB).
+// Body index: 0 Sun, 1 Moon, 2.. the planets and Pluto (planet_series).
 int body_index(const std::string& name) {
     const auto& names = sky_body_names();
     for (size_t i = 0; i < names.size(); ++i)
@@ -41,21 +42,18 @@ glm::dvec3 barycentric_au(int index, double d) {
     const EarthState e = earth_state(d);
     const glm::dvec3 sun = e.bary - e.helio;
     if (index == 0) return sun;
-    static const int kPlan94[] = {0, 0, 1, 2, 4, 5, 6, 7, 8};  // mercury=1, venus=2, mars=4 ...
-    double pv[2][3];
-    eraPlan94(ERFA_DJ00, d, kPlan94[index], pv);
-    return sun + vec(pv[0]);
+    return sun + planet_heliocentric_au(static_cast<PlanetSeries>(index - 2), d);
 }
 
 }  // namespace
 
 const std::vector<std::string>& sky_body_names() {
-    static const std::vector<std::string> names = {"sun",     "moon",   "mercury", "venus",  "mars",
-                                                   "jupiter", "saturn", "uranus",  "neptune"};
+    static const std::vector<std::string> names = {"sun",     "moon",   "mercury", "venus",   "mars",
+                                                   "jupiter", "saturn", "uranus",  "neptune", "pluto"};
     return names;
 }
 
-glm::dvec3 apparent_geocentric_m(const std::string& body, double t_tt_s) {
+glm::dvec3 astrometric_geocentric_m(const std::string& body, double t_tt_s) {
     const int index = body_index(body);
     const double d = t_tt_s / ERFA_DAYSEC;
     if (index == 1) {
@@ -67,7 +65,7 @@ glm::dvec3 apparent_geocentric_m(const std::string& body, double t_tt_s) {
         }
         return vec(pv[0]) * kAstronomicalUnit_m;
     }
-    // Sun and planets: astrometric vector (body at t - light time, Earth at t), then aberration.
+    // Sun and planets: the body at t - light time, the Earth at t.
     const EarthState earth = earth_state(d);
     glm::dvec3 p(0.0);
     double tau = 0.0;
@@ -75,12 +73,20 @@ glm::dvec3 apparent_geocentric_m(const std::string& body, double t_tt_s) {
         p = barycentric_au(index, d - tau) - earth.bary;
         tau = glm::length(p) / kLightAuPerDay;
     }
+    return p * kAstronomicalUnit_m;
+}
+
+glm::dvec3 apparent_geocentric_m(const std::string& body, double t_tt_s) {
+    const glm::dvec3 p = astrometric_geocentric_m(body, t_tt_s);
+    if (body == "moon") return p;
+    // Annual aberration with the Earth's barycentric velocity.
+    const EarthState earth = earth_state(t_tt_s / ERFA_DAYSEC);
     const double dist = glm::length(p);
     double pnat[3] = {p.x / dist, p.y / dist, p.z / dist}, ppr[3];
     const glm::dvec3 v = earth.bary_velocity / kLightAuPerDay;  // in units of c
     double vc[3] = {v.x, v.y, v.z};
     eraAb(pnat, vc, glm::length(earth.helio), std::sqrt(1.0 - glm::dot(v, v)), ppr);
-    return vec(ppr) * (dist * kAstronomicalUnit_m);
+    return vec(ppr) * dist;
 }
 
 SkyPosition sky_position(const std::string& body, double t_tt_s) {

@@ -1,8 +1,9 @@
 #pragma once
-// Apparent geocentric positions of the Sun, the Moon and the planets, all from ERFA:
-//   Earth (heliocentric and barycentric)  eraEpv00  (vs DE405: a few km, Note in epv00.c)
-//   Moon (geocentric, geometric)          eraMoon98 (vs ELP/MPP02 1950-2100: RMS 2.9", worst 18.3")
-//   Mercury ... Neptune (heliocentric)    eraPlan94 (vs DE200 1800-2100: Mercury 7" ... Saturn 87")
+// Apparent geocentric positions of the Sun, the Moon, the planets and Pluto:
+//   Earth (heliocentric and barycentric)  ERFA eraEpv00  (vs DE405: a few km, Note in epv00.c)
+//   Moon (geocentric, geometric)          ERFA eraMoon98 (vs ELP/MPP02 1950-2100: RMS 2.9", worst 18.3")
+//   Mercury ... Neptune, Pluto            VSOP87 and Meeus ch. 37 through libnova (scene/planet_series)
+// Measured against an independent ephemeris over 1900-2100 in docs/ephemeris-accuracy.md.
 // "Apparent" = light-time corrected (the body where it was when the light left it), plus annual
 // aberration (eraAb, the Earth's barycentric velocity) for the Sun and the planets. For the Moon
 // only light time is applied: its geocentric vector is already relative to the moving Earth, so
@@ -26,12 +27,17 @@ struct SkyPosition {
     double distance_km = 0.0;
 };
 
-// The body names understood below: sun, moon, mercury, venus, mars, jupiter, saturn, uranus, neptune.
+// The body names understood below: sun, moon, mercury, venus, mars, jupiter, saturn, uranus, neptune,
+// pluto.
 const std::vector<std::string>& sky_body_names();
 
 // The apparent geocentric vector alone (what searches need). Throws std::invalid_argument naming
 // the body if it is not one of sky_body_names().
 glm::dvec3 apparent_geocentric_m(const std::string& body, double t_tt_s);
+
+// The astrometric geocentric vector: light time only, no aberration (ICRS axes, metres). For the
+// Moon it equals the apparent one.
+glm::dvec3 astrometric_geocentric_m(const std::string& body, double t_tt_s);
 
 // The same with right ascension and declination of date (GCRS rotated by eraPnm06a, then eraC2s).
 SkyPosition sky_position(const std::string& body, double t_tt_s);

@@ -13,16 +13,50 @@ double sun_irradiance(const SunLight& sun, double d_m) {
     return atmosphere::sun_irradiance_scene_units(sun.radiance, sun.radius_m, sun.limb_u, d_m);
 }
 
-BodyPass::BodyPass(const SceneConfig& scene)
-    : shadowed_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n#define BODY_AFTER_SKY 0\n"),
-      plain_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n#define BODY_AFTER_SKY 0\n"),
-      shadowed_after_sky_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 1\n#define BODY_AFTER_SKY 1\n"),
-      plain_after_sky_("sphere.vert", "body.frag", "#define BODY_ECLIPSE 0\n#define BODY_AFTER_SKY 1\n") {
+namespace {
+std::string body_defines(bool oblate, bool after_sky, bool shadowed) {
+    auto flag = [](const char* name, bool on) { return std::string("#define ") + name + (on ? " 1\n" : " 0\n"); };
+    return flag("BODY_ECLIPSE", shadowed) + flag("BODY_AFTER_SKY", after_sky) + flag("BODY_OBLATE", oblate);
+}
+}  // namespace
+
+BodyPass::BodyPass(const SceneConfig& scene) {
+    bool any_oblate = false;
+    for (const auto& b : scene.bodies) any_oblate = any_oblate || b.flattening > 0.0;
+    for (int oblate = 0; oblate < (any_oblate ? 2 : 1); ++oblate)
+        for (int after_sky = 0; after_sky < 2; ++after_sky)
+            for (int shadowed = 0; shadowed < 2; ++shadowed)
+                programs_[oblate][after_sky][shadowed] =
+                    std::make_unique<GlProgram>("sphere.vert", "body.frag", body_defines(oblate, after_sky, shadowed));
     for (const auto& b : scene.bodies) {
         if (b.kind == BodyKind::Star) continue;
         const BodyImage img = load_body_image(b.texture);
         textures_[b.id] = std::make_unique<GlTexture>(img.width, img.height, img.rgb);
     }
+}
+
+const GlProgram& BodyPass::program(bool oblate, bool after_sky, bool shadowed) const {
+    return *programs_[oblate][after_sky][shadowed];
+}
+
+SphereView BodyPass::oblate_sphere(const GlProgram& program, const ChannelView& view, const BodyConfig& body,
+                                   const BodyState& state, const SphereView& sphere) {
+    // u_to_sphere = B^T diag(1, 1, 1 / (1 - f)) B, B = channel -> body, all in double.
+    const glm::dmat3 b = glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world;
+    glm::dmat3 stretch(1.0), squeeze(1.0);
+    stretch[2][2] = 1.0 / (1.0 - body.flattening);
+    squeeze[2][2] = 1.0 - body.flattening;
+    const glm::dmat3 to_sphere = glm::transpose(b) * stretch * b, from_sphere = glm::transpose(b) * squeeze * b;
+    program.set("u_to_sphere", glm::mat3(to_sphere));
+    program.set("u_from_sphere", glm::mat3(from_sphere));
+    SphereView s = sphere;
+    const glm::dvec3 centre = to_sphere * (sphere.center_dir * sphere.distance_m);
+    s.distance_m = glm::length(centre);
+    if (s.distance_m > 0.0) {
+        s.center_dir = centre / s.distance_m;
+        s.sin_alpha = sphere.radius_m / s.distance_m;
+    }
+    return s;
 }
 
 const GlTexture* BodyPass::texture(uint16_t body_id) const {
@@ -44,9 +78,8 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
     const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
 
-    const bool shadowed = casters.count > 0 && !body.atmosphere.present;
-    const GlProgram& program =
-        sky ? (shadowed ? shadowed_after_sky_ : plain_after_sky_) : (shadowed ? shadowed_ : plain_);
+    const bool shadowed = casters.count > 0 && !body.atmosphere.present, oblate = body.flattening > 0.0;
+    const GlProgram& program = this->program(oblate, sky != nullptr, shadowed);
     program.use();
     program.set("u_channel_to_body", channel_to_body(view, state));
     program.set("u_sun_dir", glm::vec3(sun_dir));
@@ -57,7 +90,7 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     shadows.apply(program, casters, 1);
     if (sky) sky->set_sky_in_front(program);
     vao_.bind();
-    draw_sphere(program, view, sphere);
+    draw_sphere(program, view, oblate ? oblate_sphere(program, view, body, state, sphere) : sphere);
     gl::check("body pass (" + body.name + ")");
 }
 

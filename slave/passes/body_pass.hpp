@@ -38,10 +38,16 @@ public:
     static glm::mat3 channel_to_body(const ChannelView& view, const BodyState& state);
 
 private:
-    // With eclipse shadows (a body without an atmosphere, in a shadow) and without: the atmosphere
-    // pass relights the surface of a body that has one, shadows included. Each also drawn after
-    // the sky.
-    GlProgram shadowed_, plain_, shadowed_after_sky_, plain_after_sky_;
+    // programs_[oblate][after_sky][shadowed]: with eclipse shadows (a body without an atmosphere,
+    // in a shadow) and without (the atmosphere pass relights the surface of a body that has one,
+    // shadows included); drawn in the usual order or after the sky; a sphere or an oblate
+    // spheroid. The oblate ones are built only for a scene that has a flattened body.
+    std::unique_ptr<GlProgram> programs_[2][2][2];
+    const GlProgram& program(bool oblate, bool after_sky, bool shadowed) const;
+    // Sets the stretched-sphere uniforms of an oblate body (body.frag, BODY_OBLATE) and returns the
+    // sphere as that frame sees it (its cover unchanged).
+    static SphereView oblate_sphere(const GlProgram& program, const ChannelView& view, const BodyConfig& body,
+                                    const BodyState& state, const SphereView& sphere);
     GlEmptyVertexArray vao_;
     std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
 };

@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Write the independent ephemeris Cupola's positions are tested against (tests/test_ephemeris_reference.cpp).
+
+Usage: python3 tools/make_ephemeris_reference.py data/ephemeris/pyephem_reference.csv \
+                                                 data/ephemeris/pyephem_orientation.csv
+
+Source: PyEphem (Debian package python3-ephem, 4.1.4), whose libastro computes the planets from its
+own truncated VSOP87 code, the Moon from its own ELP 2000-82 code and Pluto from its own series,
+none of which shares code with ERFA or libnova (the two libraries Cupola uses).
+For each body, 40 instants spread over 1900-2100 (a fixed random sequence, seed 18) give PyEphem's
+astrometric geocentric place: light-time corrected, no aberration, J2000 equator and equinox.
+The instant is given in TT (Julian date); PyEphem takes UT, so the date handed to it is TT minus
+PyEphem's own Delta T, iterated: both sides then compute at the same TT instant.
+Output columns: body,tt_jd,ra_deg,dec_deg (deterministic for a given PyEphem version).
+
+The second file holds orientations on 10 instants each (seed 53), geocentric: the Moon's libration
+in longitude and latitude (libastro's own lunar libration code, after Meeus 1998 ch. 53) and
+Jupiter's System II central meridian (libastro, after Meeus 1998 ch. 43).
+Columns: body,tt_jd,quantity,value_deg.
+"""
+import math
+import random
+import sys
+
+import ephem
+
+BODIES = [("sun", ephem.Sun), ("moon", ephem.Moon), ("mercury", ephem.Mercury), ("venus", ephem.Venus),
+          ("mars", ephem.Mars), ("jupiter", ephem.Jupiter), ("saturn", ephem.Saturn), ("uranus", ephem.Uranus),
+          ("neptune", ephem.Neptune), ("pluto", ephem.Pluto)]
+DUBLIN_JD = 2415020.0  # PyEphem dates count days from 1899 Dec 31 12:00
+
+
+def ut_date_for_tt(tt_jd):
+    ut = tt_jd - DUBLIN_JD
+    for _ in range(4):
+        ut = tt_jd - DUBLIN_JD - ephem.delta_t(ephem.Date(ut)) / 86400.0
+    return ephem.Date(ut)
+
+
+def orientation_rows():
+    rng = random.Random(53)
+    j1900, j2100 = 2415020.5, 2488069.5
+    rows = ["body,tt_jd,quantity,value_deg"]
+    for _ in range(10):
+        tt_jd = round(j1900 + (j2100 - j1900) * rng.random(), 6)
+        m = ephem.Moon(ut_date_for_tt(tt_jd))
+        rows.append(f"moon,{tt_jd:.6f},libration_long,{math.degrees(m.libration_long):.6f}")
+        rows.append(f"moon,{tt_jd:.6f},libration_lat,{math.degrees(m.libration_lat):.6f}")
+    for _ in range(10):
+        tt_jd = round(j1900 + (j2100 - j1900) * rng.random(), 6)
+        j = ephem.Jupiter(ut_date_for_tt(tt_jd))
+        rows.append(f"jupiter,{tt_jd:.6f},cml_system_ii,{math.degrees(j.cmlII):.6f}")
+    return rows
+
+
+def main():
+    if len(sys.argv) != 3:
+        raise SystemExit(__doc__)
+    rng = random.Random(18)
+    j1900, j2100 = 2415020.5, 2488069.5
+    rows = ["body,tt_jd,ra_deg,dec_deg"]
+    for name, make in BODIES:
+        for _ in range(40):
+            tt_jd = round(j1900 + (j2100 - j1900) * rng.random(), 6)
+            b = make(ut_date_for_tt(tt_jd))
+            rows.append(f"{name},{tt_jd:.6f},{math.degrees(b.a_ra):.9f},{math.degrees(b.a_dec):.9f}")
+    with open(sys.argv[1], "w") as f:
+        f.write("\n".join(rows) + "\n")
+    with open(sys.argv[2], "w") as f:
+        f.write("\n".join(orientation_rows()) + "\n")
+
+
+if __name__ == "__main__":
+    main()
