@@ -91,8 +91,9 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 # maintainer scripts use to create the user (systemd-sysusers, else adduser).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri, systemd | adduser")
-# The example scenes texture the Earth with xplanet's image; oiiotool reads the frames' metadata.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "xplanet-images")
+# The example scenes texture the Earth with xplanet's image and the planets with OpenUniverse's maps;
+# oiiotool reads the frames' metadata.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "xplanet-images, openuniverse-common")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "openimageio-tools")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_SOURCE_DIR}/packaging/debian/postinst
                                        ${CMAKE_SOURCE_DIR}/packaging/debian/prerm ${CMAKE_SOURCE_DIR}/packaging/debian/postrm)

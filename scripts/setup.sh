@@ -22,6 +22,7 @@ PACKAGES=(
   python3-numpy python3-openimageio            # tools/mpcdi_reference.py, the independent MPCDI reading
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   xplanet-images                               # Earth texture
+  openuniverse-common                          # planet, Moon and Milky Way maps (configs/scenes/solar-system.json)
   iproute2 nftables                            # multi-host cluster tests: namespaces, veth, packet loss
   clang-format universal-ctags                 # source checks in ctest: formatting, function length
   clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
