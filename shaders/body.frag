@@ -22,7 +22,9 @@ uniform mat3 u_from_sphere;      // its inverse
 uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards the sun
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
 uniform vec3 u_reflectance;      // albedo * tint
-uniform sampler2D u_texture;     // linear RGB, row 0 = north
+uniform sampler2D u_texture;     // linear RGB, row 0 = north, mipmapped
+uniform int u_limb_aa;           // 1: a small disc, its limb antialiased (PlanetLight::small_disc)
+uniform float u_map_lod;         // the map level a pixel spans at the disc's centre (from the CPU)
 uniform EclipseCasters u_ecl;    // channel frame, metres from the body's centre
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
@@ -56,27 +58,44 @@ vec4 through_the_air(vec3 v, vec3 radiance) {
 }
 #endif
 
+// The pixel's coverage by the disc, from how far its centre lies inside the limb (rho = 1) in units
+// of rho's change across the pixel; the hit of a centre just outside is taken on the limb.
+float limb_coverage(float rho) {
+    if (u_limb_aa == 0) return rho < 1.0 ? 1.0 : 0.0;
+    return clamp((1.0 - rho) / max(fwidth(rho), 1e-6) + 0.5, 0.0, 1.0);
+}
+
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
 #if BODY_OBLATE
     vec3 vs = u_to_sphere * v;
     float stretch = length(vs);
     vs /= stretch;
-    vec4 hit = sphere_hit(vs, u_center_dir, u_sin_alpha);
+#else
+    vec3 vs = v;
+#endif
+    float rho = sphere_limb_rho(vs, u_center_dir, u_sin_alpha);
+    float coverage = limb_coverage(rho);
+    if (coverage <= 0.0) {
+        discard;
+    }
+    // A pixel across the limb is shaded at the middle of its covered part, not on the limb itself
+    // (where cos i falls to 0), so that a small disc keeps its light.
+    float rho_shaded = u_limb_aa == 0 ? rho : min(rho, 1.0 - 0.5 * coverage * fwidth(rho));
+    float sin_alpha = u_sin_alpha;
+    if (u_limb_aa != 0) sin_alpha *= rho_shaded < 0.9999 ? rho / max(rho_shaded, 1e-6) : rho * 1.0001;
+    vec4 hit = sphere_hit(vs, u_center_dir, sin_alpha);
     if (hit.w < 0.0) {
         discard;
     }
+#if BODY_OBLATE
     vec3 n = normalize(u_to_sphere * hit.xyz);
     vec3 surface = u_from_sphere * hit.xyz;  // the hit point / R, from the centre
 #else
-    vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
-    if (hit.w < 0.0) {
-        discard;
-    }
     vec3 n = hit.xyz;
     vec3 surface = n;
 #endif
-    vec3 albedo_map = textureLod(u_texture, body_map_uv(u_channel_to_body, n), 0.0).rgb;
+    vec3 albedo_map = textureLod(u_texture, body_map_uv(u_channel_to_body, n), u_map_lod).rgb;
     float cos_i = max(dot(n, u_sun_dir), 0.0);
     vec3 light = vec3(1.0);
 #if BODY_ECLIPSE
@@ -85,13 +104,13 @@ void main() {
     }
 #endif
 #if BODY_AFTER_SKY
-    frag_color = through_the_air(v, u_lit * cos_i * albedo_map * light);
+    frag_color = coverage * through_the_air(v, u_lit * cos_i * albedo_map * light);
 #else
-    frag_color = vec4(u_lit * cos_i * albedo_map * light, 1.0);
+    frag_color = coverage * vec4(u_lit * cos_i * albedo_map * light, 1.0);
 #if BODY_OBLATE
     float distance_m = sphere_hit_distance(vs, u_center_dir, hit.w, u_distances_m) / stretch;
 #else
-    float distance_m = sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m);
+    float distance_m = sphere_hit_distance(vs, u_center_dir, hit.w, u_distances_m);
 #endif
     frag_geometry = vec4(u_reflectance * albedo_map, distance_m);
     gl_FragDepth = log_depth(distance_m);  // only a depth target (the glare probe) keeps it

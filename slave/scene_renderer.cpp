@@ -18,9 +18,11 @@
 #include "passes/glare_probe.hpp"
 #include "passes/painter_pass.hpp"
 #include "passes/pattern_pass.hpp"
+#include "passes/planet_point_pass.hpp"
 #include "passes/render_pass.hpp"
 #include "passes/star_pass.hpp"
 #include "projection/dome_frame.hpp"
+#include "scene/sky_positions.hpp"
 #include "scene/snapshot_bodies.hpp"
 #include "scene/star_catalog.hpp"
 
@@ -65,6 +67,11 @@ struct SceneRenderer::Impl {
           frustum(ch.frustum()),
           tilt(dome_tilt_rotation(cluster.dome.tilt_deg) * channel_rotation(ch.orientation)),
           targets(ch.width, ch.height) {
+        psf_sigma_rad = glm::radians(scene.stars.psf_sigma_arcmin / 60.0);
+        double coarsest_pixel_rad = pixel_angle_rad(frustum);
+        for (const auto& c : cluster.channels)
+            coarsest_pixel_rad = std::max(coarsest_pixel_rad, pixel_angle_rad(c.frustum()));
+        point_to_disc_start = point_to_disc_start_rad(psf_sigma_rad, coarsest_pixel_rad);
         AtmospherePass::Atmospheres atmospheres = load_atmospheres(scene);
         tables = static_cast<int>(atmospheres.size());
         casting = std::make_unique<ShadowCasting>(scene, umbra_lights(scene, atmospheres));
@@ -78,11 +85,13 @@ struct SceneRenderer::Impl {
         stars = &add(std::make_unique<StarPass>(scene.stars,
                                                 load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit)));
         // The Sun and the bodies, far to near: colour and G-buffer.
-        PainterPass& painter = add(std::make_unique<PainterPass>(scene, shadows));
+        painter = &add(std::make_unique<PainterPass>(scene, shadows));
+        // The bodies too small for their disc alone: colour, additive, after the discs.
+        planet_points = &add(std::make_unique<PlanetPointPass>());
         // The glare probe, into its own depth target: after every occluder, before what does not
         // occlude (the atmosphere).
         if (scene.glare.enabled)
-            glare_probe = &add(std::make_unique<GlareProbe>(cluster, ch, scene, painter.bodies(), shadows));
+            glare_probe = &add(std::make_unique<GlareProbe>(cluster, ch, scene, painter->bodies(), shadows));
         // The glare's halo at reduced resolution into its own target.
         GlareHaloPass* halo = nullptr;
         if (scene.glare.enabled && scene.glare.halo_downsample > 1)
@@ -90,15 +99,17 @@ struct SceneRenderer::Impl {
         // The atmospheres, one draw per body in view, far to near: colour and G-buffer in, colour
         // out; the nearest, when it covers the channel, adds the glare's halo in the same draw.
         if (!atm.empty()) {
-            atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo, &painter.bodies()));
-            painter.set_surface_drawer(atmosphere);
+            atmosphere = &add(std::make_unique<AtmospherePass>(std::move(atm), shadows, halo, &painter->bodies()));
+            painter->set_surface_drawer(atmosphere);
+            planet_points->set_sky_in_front(atmosphere);
             stars->set_sky_source(atmosphere);  // each star judged against the sky behind it
         }
         // In a frame whose sky is drawn first, the stars and the Sun and bodies draw here instead
         // of in their own places above, each taking the air in front of it (beyond_the_air.hpp).
         if (atmosphere) {
             add(std::make_unique<AfterTheSky>(*stars));
-            add(std::make_unique<AfterTheSky>(painter));
+            add(std::make_unique<AfterTheSky>(*painter));
+            add(std::make_unique<AfterTheSky>(*planet_points));
         }
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
@@ -130,6 +141,11 @@ struct SceneRenderer::Impl {
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere
     StarPass* stars = nullptr;
+    PainterPass* painter = nullptr;
+    PlanetPointPass* planet_points = nullptr;
+    double psf_sigma_rad = 0.0;        // the stars' PSF (cluster-wide)
+    double point_to_disc_start = 0.0;  // planet_light.hpp: from the PSF and the cluster's coarsest pixel
+    void set_planet_lights(FrameContext& f) const;
     PatternPass* pattern = nullptr;  // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
     bool stars_see_the_sky = true;  // set_stars_see_the_sky(): a sky drawn first needs it
@@ -179,15 +195,31 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     }
     for (const auto& st : snap.bodies) {
         const BodyConfig& b = scene.bodies[st.id];
-        f.far_to_near.push_back({&st, &b, make_sphere_view(f.view, st.position_m, b.radius_m)});
+        f.far_to_near.push_back({&st, &b, make_sphere_view(f.view, st.position_m, b.radius_m), PlanetLight{}});
     }
     std::stable_sort(f.far_to_near.begin(), f.far_to_near.end(),
                      [](const FrameBody& a, const FrameBody& b) { return a.sphere.distance_m > b.sphere.distance_m; });
     for (const auto& it : f.far_to_near)
         if (it.body->kind != BodyKind::Star)
             f.casters[it.body->id] = casting->casters_for(snap, it.body->id, f.view.world_to_channel);
+    set_planet_lights(f);
     f.sky_first = atmosphere && stars_see_the_sky && nothing_else_before_the_sky && atmosphere->sky_first(f);
     return f;
+}
+
+void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
+    PlanetLightInputs in;
+    in.sun_position_m = f.light.position_m;
+    in.sun_irradiance_1au = sun_irradiance(f.light, kAstronomicalUnit_m);
+    in.camera_position_m = f.view.camera_position_m;
+    in.psf_sigma_rad = psf_sigma_rad;
+    in.handover_start_rad = point_to_disc_start;
+    for (FrameBody& it : f.far_to_near) {
+        if (it.body->kind == BodyKind::Star || it.body->atmosphere.present) continue;
+        in.map_mean_rgb = painter->bodies().map_mean_rgb(it.body->id);
+        in.map_grid = painter->bodies().map_grid(it.body->id);
+        it.light = planet_light(*it.body, *it.state, in);
+    }
 }
 
 void SceneRenderer::Impl::check_what_is_before_the_sky() {

@@ -255,13 +255,13 @@ TEST(RenderPasses, ThePipelineRunsInItsDocumentedOrder) {
     context();
     const View with_glare(true);
     EXPECT_EQ(SceneRenderer(with_glare.cluster, with_glare.channel, with_glare.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies", "glare probe", "glare halo", "atmosphere",
-                                        "stars after the sky", "sun and bodies after the sky", "glare",
-                                        "alignment pattern"}));
+              (std::vector<std::string>{"stars", "sun and bodies", "planet points", "glare probe", "glare halo",
+                                        "atmosphere", "stars after the sky", "sun and bodies after the sky",
+                                        "planet points after the sky", "glare", "alignment pattern"}));
     View airless;
     airless.scene.bodies[kEarth].atmosphere.present = false;
     EXPECT_EQ(SceneRenderer(airless.cluster, airless.channel, airless.scene).pass_names(),
-              (std::vector<std::string>{"stars", "sun and bodies", "alignment pattern"}));
+              (std::vector<std::string>{"stars", "sun and bodies", "planet points", "alignment pattern"}));
 }
 
 // Before the atmosphere: the planet's surface is relit from the G-buffer (the constant is gone),

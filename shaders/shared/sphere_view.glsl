@@ -35,6 +35,15 @@ vec4 sphere_hit(vec3 v, vec3 c_hat, float sin_alpha) {
     return vec4(normalize(n), mu);
 }
 
+// The view ray's distance from the sphere's centre in radii (sin(theta) / sin_alpha, as sphere_hit
+// has it; 2 when the centre is behind): 1 on the limb. Its change across a pixel gives the limb's
+// coverage of that pixel (body.frag).
+float sphere_limb_rho(vec3 v, vec3 c_hat, float sin_alpha) {
+    float theta = angle_between_units(v, c_hat);
+    if (theta >= 1.5707963) return 2.0;
+    return sin(theta) / sin_alpha;
+}
+
 // Distance from the camera to the hit found by sphere_hit (mu = its .w), from dist_m =
 // (d, R, d - R, d + R) computed in double on the CPU (d = camera-centre distance, R = radius):
 // t = (d - R)(d + R) / (d cos(theta) + R mu), the near root of the ray-sphere equation written

@@ -1,5 +1,7 @@
 #include "gl/gl_texture.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 #include <string>
 
@@ -16,10 +18,13 @@ void check_size(int width, int height) {
 GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb) : width_(width), height_(height) {
     check_size(width, height);
     glCreateTextures(GL_TEXTURE_2D, 1, &id_);
-    glTextureStorage2D(id_, 1, GL_RGB16F, width, height);
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    glTextureStorage2D(id_, levels, GL_RGB16F, width, height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(id_, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
-    glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glGenerateTextureMipmap(id_);
+    glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);

@@ -1,6 +1,7 @@
 #pragma once
 // 2D float textures (RAII):
-//  - body surface maps: RGB16F, linear filtering, repeating in s (longitude), clamped in t;
+//  - body surface maps: RGB16F with a full mipmap chain (a small disc samples the level its
+//    pixels span), trilinear filtering, repeating in s (longitude), clamped in t;
 //  - RGBA32F data and render targets: clamped to the edge in both directions, linear or nearest
 //    filtering, one level (sampled with textureLod / texelFetch).
 #include <glm/glm.hpp>

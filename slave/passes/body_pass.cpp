@@ -1,5 +1,6 @@
 #include "passes/body_pass.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -32,7 +33,19 @@ BodyPass::BodyPass(const SceneConfig& scene) {
         if (b.kind == BodyKind::Star) continue;
         const BodyImage img = load_body_image(b.texture);
         textures_[b.id] = std::make_unique<GlTexture>(img.width, img.height, img.rgb);
+        map_means_[b.id] = glm::dvec3(b.tint) * body_map_mean_rgb(img);
+        map_grids_[b.id] = luminance_grid(img.width, img.height, img.rgb, glm::dvec3(b.tint));
     }
+}
+
+const LuminanceGrid* BodyPass::map_grid(uint16_t body_id) const {
+    const auto g = map_grids_.find(body_id);
+    return g == map_grids_.end() ? nullptr : &g->second;
+}
+
+glm::dvec3 BodyPass::map_mean_rgb(uint16_t body_id) const {
+    const auto m = map_means_.find(body_id);
+    return m == map_means_.end() ? glm::dvec3(0.0) : m->second;
 }
 
 const GlProgram& BodyPass::program(bool oblate, bool after_sky, bool shadowed) const {
@@ -70,13 +83,13 @@ glm::mat3 BodyPass::channel_to_body(const ChannelView& view, const BodyState& st
 
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
                     const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
-                    const SkyInFrontSource* sky) {
+                    const SkyInFrontSource* sky, double light_scale, bool antialias_limb) {
     const auto tex = textures_.find(body.id);
     if (tex == textures_.end()) return;
     const glm::dvec3 to_sun = sun.position_m - state.position_m;  // double, world frame
     const double d_sun = glm::length(to_sun);
     const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
-    const double lit = body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
+    const double lit = light_scale * body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
 
     const bool shadowed = casters.count > 0 && !body.atmosphere.present, oblate = body.flattening > 0.0;
     const GlProgram& program = this->program(oblate, sky != nullptr, shadowed);
@@ -86,11 +99,23 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
     program.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
     program.set("u_texture", 0);
+    program.set("u_limb_aa", antialias_limb ? 1 : 0);
+    // The map's texels one pixel spans at the disc's centre: a small disc samples a coarser level.
+    // A body with an atmosphere reads level 0, as the atmosphere's look-up does when it draws the
+    // same surface (the two must agree).
+    const double pixel_on_body_rad = pixel_angle_rad(*view.frustum) * sphere.distance_m / body.radius_m;
+    const double texels = pixel_on_body_rad * tex->second->width() / (2.0 * std::numbers::pi);
+    const double lod = body.atmosphere.present ? 0.0 : std::max(0.0, std::log2(std::max(texels, 1e-30)));
+    program.set("u_map_lod", static_cast<float>(lod));
     tex->second->bind(0);
     shadows.apply(program, casters, 1);
     if (sky) sky->set_sky_in_front(program);
     vao_.bind();
+    // The limb's coverage (alpha, premultiplied colour) blends the colour; the G-buffer is written.
+    glEnablei(GL_BLEND, 0);
+    glBlendFuncSeparatei(0, GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     draw_sphere(program, view, oblate ? oblate_sphere(program, view, body, state, sphere) : sphere);
+    glDisablei(GL_BLEND, 0);
     gl::check("body pass (" + body.name + ")");
 }
 

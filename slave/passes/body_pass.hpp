@@ -15,6 +15,7 @@
 #include "passes/beyond_the_air.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/frame_context.hpp"
+#include "passes/planet_light.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
@@ -29,9 +30,17 @@ public:
     // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
     // sky: the frame's sky was drawn first; the body replaces it, composed with the air in front
     // of it (beyond_the_air.hpp), and writes no geometry (the bound framebuffer is the colour alone).
+    // light_scale multiplies the disc's radiance (PlanetLight: the phase curve and the point-to-
+    // disc weight). antialias_limb (a small disc, PlanetLight::small_disc): the colour is blended
+    // by the limb's coverage of each pixel, and a limb pixel shaded inside the limb.
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
-              const SkyInFrontSource* sky = nullptr);
+              const SkyInFrontSource* sky = nullptr, double light_scale = 1.0, bool antialias_limb = false);
+    // The mean linear colour of a body's map over its sphere, tint included (body_map_mean_rgb);
+    // black for a body without one.
+    glm::dvec3 map_mean_rgb(uint16_t body_id) const;
+    // Its luminance on a coarse grid (planet_light.hpp); null for a body without a map.
+    const LuminanceGrid* map_grid(uint16_t body_id) const;
     // A body's map (linear RGB), or null for a body without one.
     const GlTexture* texture(uint16_t body_id) const;
     // The matrix body.frag takes the map's coordinates with (shared/sphere_view.glsl, body_map_uv).
@@ -50,6 +59,8 @@ private:
                                     const BodyState& state, const SphereView& sphere);
     GlEmptyVertexArray vao_;
     std::map<uint16_t, std::unique_ptr<GlTexture>> textures_;
+    std::map<uint16_t, glm::dvec3> map_means_;
+    std::map<uint16_t, LuminanceGrid> map_grids_;
 };
 
 }  // namespace cupola

@@ -171,4 +171,20 @@ BodyImage load_body_image(const std::string& texture) {
     return img;
 }
 
+glm::dvec3 body_map_mean_rgb(const BodyImage& image) {
+    glm::dvec3 sum(0.0);
+    double weight = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+        const double w = std::cos(((y + 0.5) / image.height - 0.5) * std::numbers::pi);
+        glm::dvec3 row(0.0);
+        for (int x = 0; x < image.width; ++x) {
+            const float* p = &image.rgb[(static_cast<size_t>(y) * image.width + x) * 3];
+            row += glm::dvec3(p[0], p[1], p[2]);
+        }
+        sum += w * row;
+        weight += w * image.width;
+    }
+    return weight > 0.0 ? sum / weight : glm::dvec3(0.0);
+}
+
 }  // namespace cupola

@@ -6,6 +6,7 @@
 
 #include "config/scene_config.hpp"
 #include "passes/channel_view.hpp"
+#include "passes/planet_light.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "shading/shared_shading.hpp"
 #include "wire/snapshot.hpp"
@@ -26,6 +27,9 @@ struct FrameBody {
     const BodyState* state = nullptr;
     const BodyConfig* body = nullptr;
     SphereView sphere;
+    // Its light and whether it shows as a point, a disc or both (a planet or moon without an
+    // atmosphere; otherwise the defaults: the disc alone, as drawn).
+    PlanetLight light;
 };
 
 struct FrameContext {

@@ -28,6 +28,7 @@ public:
 
     // The planets' and moons' drawer, which the glare probe draws the occluders with.
     BodyPass& bodies() { return bodies_; }
+    const BodyPass& bodies() const { return bodies_; }
     // Bodies whose surface the atmosphere pass draws itself this frame (AtmospherePass::
     // draws_surface) are not drawn here. Set once the atmosphere pass exists (or never).
     void set_surface_drawer(const AtmospherePass* atmosphere) { atmosphere_ = atmosphere; }

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "passes/point_sprite_view.hpp"
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
 
@@ -80,21 +81,13 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     program_.set("u_sky_on", !sky.table ? 0 : after_sky ? 2 : 1);
     const ChannelFrustum& f = *view.frustum;
     const double sigma = config_.psf_sigma_arcmin / 60.0 * std::numbers::pi / 180.0;
-    const double ppt_x = f.width() / (f.tan_left() + f.tan_right());
-    const double ppt_y = f.height() / (f.tan_down() + f.tan_up());
     // Guard band: stars whose centre lies just outside still spill light into the image.
-    const int guard = 16;
-    const double gx = guard / ppt_x, gy = guard / ppt_y;
-    const ChannelFrustum wide(
-        f.orientation(),
-        FovDeg{glm::degrees(std::atan(f.tan_left() + gx)), glm::degrees(std::atan(f.tan_right() + gx)),
-               glm::degrees(std::atan(f.tan_up() + gy)), glm::degrees(std::atan(f.tan_down() + gy))},
-        f.width() + 2 * guard, f.height() + 2 * guard);
-    glViewport(-guard, -guard, f.width() + 2 * guard, f.height() + 2 * guard);
+    const PointSpriteView sprites = point_sprite_view(f);
+    bind_guarded_viewport(f);
 
     program_.set("u_world_to_channel", glm::mat3(view.world_to_channel));
-    program_.set("u_projection", glm::mat4(wide.projection(0.1, 10.0)));
-    program_.set("u_px_per_tangent", glm::vec2(ppt_x, ppt_y));
+    program_.set("u_projection", glm::mat4(sprites.wide.projection(0.1, 10.0)));
+    program_.set("u_px_per_tangent", glm::vec2(sprites.px_per_tangent_x, sprites.px_per_tangent_y));
     program_.set("u_sigma_rad", static_cast<float>(sigma));
     program_.set("u_exposure", static_cast<float>(exposure));
     program_.set("u_min_display", static_cast<float>(kMinDisplay));
@@ -117,7 +110,7 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
         glDrawArrays(GL_POINTS, 0, count);
     }
     glDisable(GL_BLEND);
-    glViewport(0, 0, f.width(), f.height());
+    unbind_guarded_viewport(f);
     gl::check("star pass");
 }
 

@@ -1,0 +1,81 @@
+#include "scene/planet_magnitude.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cupola {
+
+namespace {
+
+double poly(double a, std::initializer_list<double> c) {  // c0 + c1 a + c2 a^2 + ...
+    double s = 0.0, p = 1.0;
+    for (double k : c) s += k * p, p *= a;
+    return s;
+}
+
+// V(1, a): the magnitude at 1 AU from the Sun and the observer, a in degrees within the fit.
+double mercury(double a) {
+    return poly(a, {-0.613, 6.3280e-02, -1.6336e-03, 3.3644e-05, -3.4265e-07, 1.6893e-09, -3.0334e-12});
+}
+double venus(double a) {
+    if (a < 163.7) return poly(a, {-4.384, -1.044e-03, 3.687e-04, -2.814e-06, 8.938e-09});
+    return poly(a, {236.05828, -2.81914, 8.39034e-03});
+}
+double earth(double a) { return poly(a, {-3.99, -1.060e-03, 2.054e-04}); }
+double mars(double a) {
+    return a <= 50.0 ? poly(a, {-1.601, 2.267e-02, -1.302e-04}) : poly(a, {-0.367, -0.02573, 3.445e-04});
+}
+double jupiter(double a) {
+    if (a <= 12.0) return poly(a, {-9.395, -3.7e-04, 6.16e-04});
+    return -9.428 - 2.5 * std::log10(poly(a / 180.0, {1.0, -1.507, -0.363, -0.062, 2.809, -1.876}));
+}
+double saturn_globe(double a) {
+    if (a <= 6.5) return poly(a, {-8.95, -3.7e-04, 6.16e-04});
+    return poly(a, {-8.94, 2.446e-04, 2.672e-04, -1.506e-06, 4.767e-09});
+}
+double uranus(double a, const PlanetGeometry& g) {
+    const double sub_lat = 0.5 * (std::abs(g.sub_sun_latitude_deg) + std::abs(g.sub_observer_latitude_deg));
+    const double v = -7.110 - 0.00084 * sub_lat;
+    return a <= 3.1 ? v : v + 6.587e-3 * a + 1.045e-4 * a * a;
+}
+double neptune(double a) { return a <= 1.9 ? -7.00 : -7.00 + 7.944e-3 * a + 9.617e-5 * a * a; }
+
+struct Curve {
+    const char* planet;
+    double max_phase_deg;
+};
+constexpr Curve kCurves[] = {{"mercury", 170.0}, {"venus", 179.0},  {"earth", 170.0},  {"mars", 120.0},
+                             {"jupiter", 130.0}, {"saturn", 150.0}, {"uranus", 154.0}, {"neptune", 133.14}};
+
+double unit_magnitude(const std::string& p, double a, const PlanetGeometry& g) {
+    if (p == "mercury") return mercury(a);
+    if (p == "venus") return venus(a);
+    if (p == "earth") return earth(a);
+    if (p == "mars") return mars(a);
+    if (p == "jupiter") return jupiter(a);
+    if (p == "saturn") return saturn_globe(a);
+    if (p == "uranus") return uranus(a, g);
+    return neptune(a);
+}
+
+}  // namespace
+
+double lambert_phase(double a) { return (std::sin(a) + (std::numbers::pi - a) * std::cos(a)) / std::numbers::pi; }
+
+std::optional<double> planet_magnitude_v(const std::string& planet, const PlanetGeometry& g) {
+    const Curve* curve = nullptr;
+    for (const Curve& c : kCurves)
+        if (planet == c.planet) curve = &c;
+    if (!curve) return std::nullopt;
+    const double a = std::clamp(g.phase_deg, 0.0, 180.0), fit = std::min(a, curve->max_phase_deg);
+    double v = unit_magnitude(planet, fit, g) + 5.0 * std::log10(g.sun_distance_au * g.observer_distance_au);
+    if (a > fit) {
+        constexpr double deg = std::numbers::pi / 180.0;
+        const double ratio = std::max(lambert_phase(a * deg), 1e-12) / lambert_phase(fit * deg);
+        v -= 2.5 * std::log10(ratio);
+    }
+    return v;
+}
+
+}  // namespace cupola

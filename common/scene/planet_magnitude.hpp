@@ -1,0 +1,34 @@
+#pragma once
+// Disc-integrated V magnitudes of the planets from their measured phase curves: Mallama & Hilton
+// 2018 ("Computing apparent planetary magnitudes for The Astronomical Almanac", Astronomy and
+// Computing 25, pp. 10-24), equations 2-17:
+//   Mercury (2), Venus (3, 4), Earth (5), Mars (6, 7, without the rotation and season tables of
+//   +-0.06 mag), Jupiter (8, 9), Saturn's globe alone (11, 12: the rings are not drawn),
+//   Uranus (13, 14, with its sub-latitude term), Neptune (16, 17, after 2000).
+// Beyond the largest phase angle each fit was made from (Mercury 170, Venus 179, Earth 170, Mars 120,
+// Jupiter 130, Saturn 150, Uranus 154, Neptune 133.14 deg) the curve goes on as a Lambert sphere's
+// from the value there, so it stays continuous and finite up to 180 deg.
+#include <optional>
+#include <string>
+
+namespace cupola {
+
+// The apparent V magnitude of the Sun seen from 1 AU (Allen's Astrophysical Quantities, 4th ed.).
+constexpr double kSunMagnitudeV = -26.74;
+
+struct PlanetGeometry {
+    double sun_distance_au = 1.0;       // r: the planet from the Sun
+    double observer_distance_au = 1.0;  // Delta: the planet from the observer
+    double phase_deg = 0.0;             // Sun - planet - observer
+    double sub_sun_latitude_deg = 0.0;  // on the planet (Uranus' term)
+    double sub_observer_latitude_deg = 0.0;
+};
+
+// V of the planet named by its ephemeris ("mercury" ... "neptune"); none for a body without a
+// fitted curve (Pluto, the moons).
+std::optional<double> planet_magnitude_v(const std::string& planet, const PlanetGeometry& g);
+
+// A Lambert sphere's phase function (sin a + (pi - a) cos a) / pi: 1 at full phase.
+double lambert_phase(double phase_rad);
+
+}  // namespace cupola

@@ -1,0 +1,37 @@
+#pragma once
+// The planets and moons that show as points this frame (PlanetLight::has_point, decided once per
+// frame for the whole cluster in the frame context): each drawn with the stars' PSF, widened by
+// its disc's size, carrying (1 - disc weight) of its light, added after the discs so that the
+// point's light under a fading disc is not painted over. Hidden per pixel behind up to four nearer
+// bodies. Beyond the air: before the atmosphere, or after a sky drawn first with the air's
+// transmittance in front (beyond_the_air.hpp).
+#include <vector>
+
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "passes/beyond_the_air.hpp"
+
+namespace cupola {
+
+class PlanetPointPass : public BeyondTheAirPass {
+public:
+    PlanetPointPass();
+    std::string name() const override { return "planet points"; }
+    PassIo io() const override { return {.writes_color = true}; }
+    int prepare_at(const FrameContext& frame, bool after_sky) override;
+    void draw(const PassInputs& in, int step) override;
+    // Where the air in front comes from when the sky was drawn first (the atmosphere pass).
+    void set_sky_in_front(const SkyInFrontSource* sky) { sky_ = sky; }
+    static constexpr int kMaxOccluders = 4;
+
+private:
+    void draw_point(const GlProgram& program, const FrameBody& body) const;
+    void set_occluders(const GlProgram& program, const FrameBody& body) const;
+    GlProgram program_, after_sky_program_;
+    GlEmptyVertexArray vao_;
+    const FrameContext* frame_ = nullptr;
+    bool after_sky_ = false;
+    const SkyInFrontSource* sky_ = nullptr;
+};
+
+}  // namespace cupola

@@ -1,0 +1,233 @@
+// Planets as a planetarium shows them (passes/planet_light, passes/planet_point_pass, body.frag):
+//   - the phase curves (scene/planet_magnitude, Mallama & Hilton 2018) at known points and their
+//     continuation past each fit;
+//   - the disc-integrated magnitude of each planet's rendered disc (real maps, real EGL) within
+//     0.2 mag of the curve at five phase angles;
+//   - Jupiter approached from 10 AU to 10 radii: the frame's energy follows the curve, and no
+//     frame-to-frame step exceeds 2 % beyond what the distance explains, across the point-to-disc
+//     handover;
+//   - a point and a fading disc on the edge between two channels equal one wide channel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
+#include "atmosphere/solar_scale.hpp"
+#include "config/cluster_config.hpp"
+#include "config/scene_config.hpp"
+#include "gl/egl_context.hpp"
+#include "image/frame_image.hpp"
+#include "scene/planet_magnitude.hpp"
+#include "scene/sky_positions.hpp"
+#include "scene_renderer.hpp"
+#include "support/test_support.hpp"
+
+using namespace cupola;
+
+namespace {
+
+constexpr double kAu = kAstronomicalUnit_m;
+
+struct PlanetInfo {
+    const char* name;
+    double radius_m, flattening;
+    std::array<double, 5> phases_deg;
+};
+const PlanetInfo kPlanets[] = {
+    {"mercury", 2.4405e6, 0.0, {10, 40, 70, 100, 130}},  {"venus", 6.0518e6, 0.0, {10, 50, 90, 130, 150}},
+    {"mars", 3.39619e6, 0.00589, {5, 20, 40, 60, 90}},   {"jupiter", 7.1492e7, 0.06487, {2, 6, 10, 40, 90}},
+    {"saturn", 6.0268e7, 0.09796, {2, 5, 20, 60, 100}},  {"uranus", 2.5559e7, 0.02293, {1, 2, 3, 50, 100}},
+    {"neptune", 2.4764e7, 0.01708, {1, 2, 20, 60, 100}},
+};
+
+SceneConfig planet_scene(const std::string& dir, const PlanetInfo& p) {
+    nlohmann::json scene = {
+        {"bodies",
+         {{{"name", "sun"}, {"kind", "star"}, {"ephemeris", "sun"}, {"radius_m", 6.957e8}, {"radiance", 5.8e4}},
+          {{"name", p.name},
+           {"kind", "planet"},
+           {"ephemeris", p.name},
+           {"radius_m", p.radius_m},
+           {"flattening", p.flattening},
+           {"texture", std::string("/usr/share/openuniverse/textures/") + p.name + ".jpg"},
+           {"albedo", 0.5}}}},
+        {"stars", {{"catalog", test::source_path("data/stars/bright_stars.csv")}, {"magnitude_limit", -2.0}}}};
+    test::write_text(dir + "/scene.json", scene.dump());
+    return load_scene_config(dir + "/scene.json");
+}
+
+ChannelConfig channel(double left_deg, double right_deg, int width, double up_down_deg = 20.0) {
+    ChannelConfig ch;
+    ch.fov = {left_deg, right_deg, up_down_deg, up_down_deg};
+    ch.width = width;
+    ch.height = 256;
+    return ch;
+}
+
+// The planet at the origin (pole +Z), the Sun at r AU along `to_sun`, the camera at `delta_m` along a
+// direction at `phase_deg` from it in the equatorial plane, looking at the planet with +Z up.
+Snapshot planet_view(double phase_deg, double r_au, double delta_m) {
+    const double a = glm::radians(phase_deg);
+    const glm::dvec3 to_sun(1, 0, 0), to_camera(std::cos(a), std::sin(a), 0);
+    Snapshot s;
+    s.bodies.resize(2);
+    s.bodies[1].id = 1;
+    s.bodies[0].position_m = to_sun * r_au * kAu;
+    s.camera_position_m = to_camera * delta_m;
+    const glm::dvec3 back = to_camera, up(0, 0, 1), right = glm::normalize(glm::cross(up, back));
+    s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
+    return s;
+}
+
+// The frame's light: each pixel's radiance (luminance) times its solid angle.
+double frame_flux(const Image& img, const ChannelConfig& ch) {
+    const ChannelFrustum f = ch.frustum();
+    const double sx = (f.tan_left() + f.tan_right()) / img.width, sy = (f.tan_down() + f.tan_up()) / img.height;
+    double sum = 0.0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const double tx = -f.tan_left() + (x + 0.5) * sx, ty = f.tan_up() - (y + 0.5) * sy;
+            const double q = 1.0 + tx * tx + ty * ty;
+            const float* p = img.pixel(x, y);
+            sum += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) * sx * sy / (q * std::sqrt(q));
+        }
+    return sum;
+}
+
+// With CUPOLA_TEST_IMAGES=DIR, the frame goes to DIR/NAME/ as a PNG (docs/images/planets-*.png),
+// scaled so that its brightest value reads 1.
+void maybe_write(const std::string& name, Image img) {
+    const char* dir = std::getenv("CUPOLA_TEST_IMAGES");
+    if (!dir) return;
+    float peak = 1e-30f;
+    for (float v : img.rgba) peak = std::max(peak, v);
+    for (float& v : img.rgba) v /= peak;
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 1.0f;
+    write_frame(std::string(dir) + "/" + name, img, FrameMetadata{}, {"png"}, 1.0);
+}
+
+double sun_irradiance_1au(const SceneConfig& scene) {
+    return atmosphere::sun_irradiance_scene_units(scene.bodies[0], kAu);
+}
+
+PlanetGeometry geometry(double phase_deg, double r_au, double delta_m) {
+    PlanetGeometry g;
+    g.sun_distance_au = r_au;
+    g.observer_distance_au = delta_m / kAu;
+    g.phase_deg = phase_deg;
+    return g;
+}
+
+}  // namespace
+
+TEST(PlanetMagnitude, CurvesAtKnownPointsAndPastTheirFits) {
+    // Jupiter at a typical opposition (r 5.2, Delta 4.2 AU): -9.395 + 5 log10(21.84) = -2.70.
+    EXPECT_NEAR(*planet_magnitude_v("jupiter", {5.2, 4.2, 0.0, 0.0, 0.0}), -2.699, 0.002);
+    // Venus' two fits meet at 163.7 deg to 0.05 mag; Mars' at 50 deg to 0.01.
+    auto v = [](const char* p, double a) { return *planet_magnitude_v(p, {1.0, 1.0, a, 0.0, 0.0}); };
+    EXPECT_NEAR(v("venus", 163.69), v("venus", 163.71), 0.05);
+    EXPECT_NEAR(v("mars", 49.99), v("mars", 50.01), 0.01);
+    // Past Jupiter's fit (130 deg) the curve goes on as a Lambert sphere's, continuous and fainter.
+    EXPECT_NEAR(v("jupiter", 130.0), v("jupiter", 130.001), 0.001);
+    EXPECT_GT(v("jupiter", 170.0), v("jupiter", 130.0) + 2.0);
+    EXPECT_TRUE(std::isfinite(v("neptune", 180.0)));
+    EXPECT_FALSE(planet_magnitude_v("pluto", {}).has_value());
+    EXPECT_NEAR(lambert_phase(0.0), 1.0, 1e-15);
+    EXPECT_NEAR(lambert_phase(glm::radians(90.0)), 1.0 / std::numbers::pi, 1e-15);
+}
+
+TEST(PlanetLight, EachPlanetsRenderedDiscIsWithinAFifthOfAMagnitudeOfItsCurve) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const std::string dir = test::scratch_dir("planet_light_magnitudes");
+    // A narrow channel, so that the disc (1.6 deg across, 170 pixels) is seen from 72 radii: the fits
+    // are for distant observers, who see the whole lit hemisphere (from 5 radii the limb hides
+    // much of a crescent).
+    const ChannelConfig ch = channel(1, 1, 256, 1);
+    ClusterConfig cluster;
+    cluster.channels.push_back(ch);
+    for (const PlanetInfo& p : kPlanets) {
+        const SceneConfig scene = planet_scene(dir, p);
+        SceneRenderer renderer(cluster, ch, scene);
+        const double delta_m = p.radius_m / std::sin(glm::radians(0.8));
+        for (const double a : p.phases_deg) {
+            const Image img = renderer.render(planet_view(a, 5.0, delta_m));
+            const double flux = frame_flux(img, ch);
+            if (a == p.phases_deg[3]) maybe_write(std::string("disc-") + p.name, img);
+            const double rendered_v = kSunMagnitudeV - 2.5 * std::log10(flux / sun_irradiance_1au(scene));
+            const double curve_v = *planet_magnitude_v(p.name, geometry(a, 5.0, delta_m));
+            EXPECT_NEAR(rendered_v, curve_v, 0.2) << p.name << " at phase " << a;
+            std::printf("%-8s phase %5.1f: rendered %+.3f, curve %+.3f mag\n", p.name, a, rendered_v, curve_v);
+        }
+    }
+}
+
+TEST(PlanetLight, JupiterApproachedFromTenAuToTenRadiiHasNoStep) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const std::string dir = test::scratch_dir("planet_light_approach");
+    const PlanetInfo& jupiter = kPlanets[3];
+    const SceneConfig scene = planet_scene(dir, jupiter);
+    const ChannelConfig ch = channel(20, 20, 256);
+    ClusterConfig cluster;
+    cluster.channels.push_back(ch);
+    SceneRenderer renderer(cluster, ch, scene);
+    const double far_m = 10.0 * kAu, near_m = 10.0 * jupiter.radius_m, phase = 30.0;
+    const int frames = 120;
+    double previous_ratio = 0.0, worst_step = 0.0, worst_level = 0.0;
+    for (int i = 0; i < frames; ++i) {
+        const double delta_m = far_m * std::pow(near_m / far_m, double(i) / (frames - 1));
+        const Image img = renderer.render(planet_view(phase, 5.2, delta_m));
+        const double measured = frame_flux(img, ch);
+        for (const int shown : {70, 78, 82, 86, 90, 99})
+            if (i == shown) maybe_write("approach-" + std::to_string(i), img);
+        const double expected =
+            sun_irradiance_1au(scene) *
+            std::pow(10.0, -0.4 * (*planet_magnitude_v("jupiter", geometry(phase, 5.2, delta_m)) - kSunMagnitudeV));
+        const double ratio = measured / expected;  // what the distance does not explain
+        worst_level = std::max(worst_level, std::abs(ratio - 1.0));
+        if (i > 0) worst_step = std::max(worst_step, std::abs(ratio / previous_ratio - 1.0));
+        EXPECT_NEAR(ratio, 1.0, 0.1) << "frame " << i << ", " << delta_m / jupiter.radius_m << " radii";
+        if (i > 0) {
+            EXPECT_LT(std::abs(ratio / previous_ratio - 1.0), 0.02) << "frame " << i;
+        }
+        if (std::getenv("CUPOLA_TEST_VERBOSE"))
+            std::printf("frame %3d: %8.1f radii, rho %.4f deg, ratio %.4f\n", i, delta_m / jupiter.radius_m,
+                        glm::degrees(std::asin(jupiter.radius_m / delta_m)), ratio);
+        previous_ratio = ratio;
+    }
+    std::printf("approach: worst step %.4f, worst level %.4f\n", worst_step, worst_level);
+}
+
+TEST(PlanetLight, PointAndFadingDiscAcrossAChannelEdgeEqualOneWideChannel) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const std::string dir = test::scratch_dir("planet_light_seam");
+    const PlanetInfo& jupiter = kPlanets[3];
+    const SceneConfig scene = planet_scene(dir, jupiter);
+    const ChannelConfig left = channel(20, 0, 128), right = channel(0, 20, 128), wide = channel(20, 20, 256);
+    ClusterConfig cluster;  // the same cluster for all three: one coarsest pixel, one handover
+    cluster.channels = {left, right, wide};
+    SceneRenderer l(cluster, left, scene), r(cluster, right, scene), w(cluster, wide, scene);
+    // As a point (0.3 AU) and half-way through the handover (disc and point both drawn).
+    for (const double delta_m : {0.3 * kAu, jupiter.radius_m / std::tan(glm::radians(0.45))}) {
+        const Snapshot s = planet_view(30.0, 5.2, delta_m);
+        const Image a = l.render(s), b = r.render(s), c = w.render(s);
+        double worst = 0.0, peak = 0.0;
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x) {
+                const float* narrow = x < 128 ? a.pixel(x, y) : b.pixel(x - 128, y);
+                for (int k = 0; k < 3; ++k) {
+                    worst = std::max(worst, double(std::abs(narrow[k] - c.pixel(x, y)[k])));
+                    peak = std::max(peak, double(c.pixel(x, y)[k]));
+                }
+            }
+        EXPECT_GT(peak, 0.0);
+        EXPECT_LT(worst, 1e-4 * peak) << delta_m / kAu << " AU";
+        EXPECT_NEAR(frame_flux(a, left) + frame_flux(b, right), frame_flux(c, wide), 1e-3 * frame_flux(c, wide));
+    }
+}
