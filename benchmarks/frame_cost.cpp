@@ -4,7 +4,10 @@
 //   day     from the ground, the Sun 50 degrees from the zenith and the Moon in view, the
 //           horizon across the lower part of the channel;
 //   sunset  from the ground, the Sun on the horizon in the middle of the channel;
-//   orbit   from 400 km, the limb of the Earth across the channel, the Moon above it.
+//   orbit   from 400 km, the limb of the Earth across the channel, the Moon above it;
+//   night   (asked for by --views) from the ground, the Sun 30 degrees down, looking east; the
+//           scene's bodies other than the Sun, the Earth and the Moon 4 AU away across the view
+//           (with --scene configs/scenes/solar-system.json: nine planet points).
 // The snapshot is finished the way the master does it (finish_frame_snapshot: automatic
 // exposure, glare sources). In the same process and rounds, a trivial full-screen pass (one
 // texel fetched per pixel into an RGBA16F target of the channel's size) is timed, and every cost
@@ -90,6 +93,9 @@ const std::vector<ViewSpec>& all_views() {
         {"sunset", 2.0, 0.0, 10.0, 0.0, 0.0, 150.0, 20.0},
         // From 400 km the horizon lies acos(R / (R + h)) = 19.7 degrees below the horizontal.
         {"orbit", 400.0e3, 0.0, -15.0, 90.0, 30.0, -20.0, 10.0},
+        // Night: the Sun 30 degrees down; the scene's other bodies (solar-system.json's planets)
+        // 4 AU away across the view, each a point (planet_point_pass).
+        {"night", 2.0, 100.0, 20.0, 280.0, -30.0, 250.0, -10.0},
     };
     return v;
 }
@@ -113,6 +119,11 @@ Snapshot view_snapshot(const ViewSpec& v, const SceneConfig& scene, const Cluste
         s.bodies[sun->id].position_m = kAu_m * local_direction(v.sun_az_deg, v.sun_el_deg);
     if (const BodyConfig* moon = scene.find("moon"))
         s.bodies[moon->id].position_m = kMoonDistance_m * local_direction(v.moon_az_deg, v.moon_el_deg);
+    int others = 0;
+    for (const BodyConfig& b : scene.bodies)
+        if (b.name != "sun" && b.name != "earth" && b.name != "moon")
+            s.bodies[b.id].position_m =
+                4.0 * kAu_m * local_direction(v.look_az_deg - 35.0 + 9.0 * others++, v.look_el_deg);
     const glm::dvec3 up(0, 0, 1);
     s.camera_position_m = (earth->radius_m + v.altitude_m) * up;
     // Camera frame columns: +X right, +Y up, +Z back.
@@ -344,7 +355,7 @@ void write_view_image(const std::string& dir, const ViewSpec& v, SceneRenderer& 
 const ViewSpec& find_view(const std::string& name) {
     for (const auto& v : all_views())
         if (v.name == name) return v;
-    throw std::runtime_error("no view named \"" + name + "\" (day, sunset, orbit)");
+    throw std::runtime_error("no view named \"" + name + "\" (day, sunset, orbit, night)");
 }
 
 int run(const Options& o) {
@@ -408,7 +419,7 @@ int main(int argc, char** argv) {
     app.add_option("--model", o.model, "atmosphere quality level (default: the scene's)");
     app.add_option("--scene", o.scene_file, "scene file (bodies named sun, earth and moon)")->check(CLI::ExistingFile);
     app.add_flag("--read-back", o.read_back, "also read every frame back as RGBA32F (what a files sink needs)");
-    app.add_option("--views", o.views, "views to run: day, sunset, orbit")->delimiter(',');
+    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night")->delimiter(',');
     app.add_option("--device", o.device, "EGL device index (-1: the first that works, else surfaceless)");
     app.add_option("--images", o.images, "also write DIR/frame-cost-<view>.png")->check(CLI::ExistingDirectory);
     if (auto rc = parse_command_line(app, argc, argv, "frame_cost")) return *rc;

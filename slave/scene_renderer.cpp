@@ -337,6 +337,8 @@ uint64_t SceneRenderer::geometry_clears() const { return impl_->targets.geometry
 
 uint64_t SceneRenderer::color_clears() const { return impl_->targets.color_clears(); }
 
+long SceneRenderer::planet_points_drawn() const { return impl_->planet_points->points_drawn(); }
+
 void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};

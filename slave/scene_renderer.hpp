@@ -67,6 +67,8 @@ public:
     // Pass timing, off by default (then draw() waits for the GPU only once, at its end): when
     // on, draw() also waits after every pass and records the wall times of the frame.
     void set_pass_timing(bool on);
+    // Planets and moons drawn as points (wholly or fading into their disc) since construction.
+    long planet_points_drawn() const;
     // Whether the nearest atmosphere's draw may add the glare's halo when it covers the channel
     // (on by default); off, the glare pass always upsamples the halo on its own (the two must
     // give the same image: tests/test_atmosphere_fused_draws.cpp).

@@ -75,6 +75,7 @@ Snapshot planet_view(double phase_deg, double r_au, double delta_m) {
     s.bodies[1].id = 1;
     s.bodies[0].position_m = to_sun * r_au * kAu;
     s.camera_position_m = to_camera * delta_m;
+    s.settings.exposure = 0.0f;  // no exposure: every point drawn, its sprite out to a fixed reach
     const glm::dvec3 back = to_camera, up(0, 0, 1), right = glm::normalize(glm::cross(up, back));
     s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
     return s;
@@ -230,4 +231,32 @@ TEST(PlanetLight, PointAndFadingDiscAcrossAChannelEdgeEqualOneWideChannel) {
         EXPECT_LT(worst, 1e-4 * peak) << delta_m / kAu << " AU";
         EXPECT_NEAR(frame_flux(a, left) + frame_flux(b, right), frame_flux(c, wide), 1e-3 * frame_flux(c, wide));
     }
+}
+
+TEST(PlanetLight, APointOutOfViewCostsNoDraw) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const std::string dir = test::scratch_dir("planet_light_out_of_view");
+    const SceneConfig scene = planet_scene(dir, kPlanets[3]);
+    const ChannelConfig ch = channel(20, 20, 256);
+    ClusterConfig cluster;
+    cluster.channels.push_back(ch);
+    SceneRenderer renderer(cluster, ch, scene);
+    Snapshot s = planet_view(30.0, 5.2, 4.0 * kAu);  // a point in the middle of the channel
+    const double in_view = frame_flux(renderer.render(s), ch);
+    EXPECT_EQ(renderer.planet_points_drawn(), 1);
+    EXPECT_GT(in_view, 0.0);
+    // Turned 60 degrees away (the channel spans 20 each way): no draw, no light.
+    s.camera_orientation = s.camera_orientation * glm::angleAxis(glm::radians(60.0), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(frame_flux(renderer.render(s), ch), 0.0);
+    EXPECT_EQ(renderer.planet_points_drawn(), 1);
+    // In view again, at an exposure that cannot show its peak (a planet by day): no draw either.
+    s = planet_view(30.0, 5.2, 4.0 * kAu);
+    s.settings.exposure = 1e-30f;
+    renderer.render(s);
+    EXPECT_EQ(renderer.planet_points_drawn(), 1);
+    s.settings.exposure = 1.0f;
+    renderer.render(s);
+    EXPECT_EQ(renderer.planet_points_drawn(), 2);
 }

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "passes/atmosphere_pass.hpp"
 #include "passes/point_sprite_view.hpp"
 #include "passes/star_pass.hpp"
 
@@ -13,13 +14,28 @@ PlanetPointPass::PlanetPointPass()
     : program_("planet_point.vert", "planet_point.frag", "#define POINT_AFTER_SKY 0\n"),
       after_sky_program_("planet_point.vert", "planet_point.frag", "#define POINT_AFTER_SKY 1\n") {}
 
+bool PlanetPointPass::visible_at(const PlanetLight& light, double exposure) {
+    if (exposure <= 0.0) return true;
+    const glm::dvec3 color = light.flux * (1.0 - light.disc_weight) * light.unit_color;
+    const double sigma = light.point_sigma_rad;
+    const double peak = std::max({color.r, color.g, color.b}) / (2.0 * std::numbers::pi * sigma * sigma);
+    return peak * exposure >= StarPass::kMinDisplay;
+}
+
 int PlanetPointPass::prepare_at(const FrameContext& frame, bool after_sky) {
     if (after_sky && !sky_) throw std::logic_error("planet points: drawn after the sky without the air in front");
     frame_ = &frame;
     after_sky_ = after_sky;
+    in_view_.clear();
+    const ChannelFrustum& f = *frame.view.frustum;
+    // The largest sprite's half-width (stars.vert clamps a point to 255 pixels) and the guard band.
+    const double reach_rad = std::min((128.0 + PointSpriteView::kGuardPx) * pixel_angle_rad(f), 0.5 * std::numbers::pi);
+    const double exposure = frame.snap->settings.exposure;
     for (const FrameBody& b : frame.far_to_near)
-        if (b.light.has_point()) return 1;
-    return 0;
+        if (b.light.has_point() && visible_at(b.light, exposure) &&
+            !sphere_outside_frustum(f, b.sphere.center_dir, std::sin(reach_rad)))
+            in_view_.push_back(&b);
+    return in_view_.empty() ? 0 : 1;
 }
 
 void PlanetPointPass::set_occluders(const GlProgram& program, const FrameBody& body) const {
@@ -67,8 +83,8 @@ void PlanetPointPass::draw(const PassInputs&, int) {
     glEnablei(GL_BLEND, 0);
     glBlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
     vao_.bind();
-    for (const FrameBody& b : frame_->far_to_near)
-        if (b.light.has_point()) draw_point(program, b);
+    for (const FrameBody* b : in_view_) draw_point(program, *b);
+    points_drawn_ += static_cast<long>(in_view_.size());
     glDisablei(GL_BLEND, 0);
     unbind_guarded_viewport(f);
     gl::check("planet points");

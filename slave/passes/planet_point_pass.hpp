@@ -4,7 +4,9 @@
 // its disc's size, carrying (1 - disc weight) of its light, added after the discs so that the
 // point's light under a fading disc is not painted over. Hidden per pixel behind up to four nearer
 // bodies. Beyond the air: before the atmosphere, or after a sky drawn first with the air's
-// transmittance in front (beyond_the_air.hpp).
+// transmittance in front (beyond_the_air.hpp). A point whose largest sprite (255 pixels, plus the
+// guard band) cannot reach the channel, or whose peak the exposure cannot show, is not drawn: 0
+// draws when none is left.
 #include <vector>
 
 #include "gl/gl_buffer.hpp"
@@ -23,6 +25,11 @@ public:
     // Where the air in front comes from when the sky was drawn first (the atmosphere pass).
     void set_sky_in_front(const SkyInFrontSource* sky) { sky_ = sky; }
     static constexpr int kMaxOccluders = 4;
+    // Whether the point's PSF peak can reach StarPass::kMinDisplay at the snapshot's exposure (as
+    // the stars' visible_magnitude; exposure <= 0: always). A planet by day is not drawn.
+    static bool visible_at(const PlanetLight& light, double exposure);
+    // Points drawn since construction (a point is drawn only when its sprite can reach the channel).
+    long points_drawn() const { return points_drawn_; }
 
 private:
     void draw_point(const GlProgram& program, const FrameBody& body) const;
@@ -30,6 +37,8 @@ private:
     GlProgram program_, after_sky_program_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
+    std::vector<const FrameBody*> in_view_;  // this frame's points whose sprite can reach the channel
+    long points_drawn_ = 0;
     bool after_sky_ = false;
     const SkyInFrontSource* sky_ = nullptr;
 };
