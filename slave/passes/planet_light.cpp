@@ -5,18 +5,15 @@
 #include <numbers>
 
 #include "scene/planet_magnitude.hpp"
+#include "shading/shared_shading.hpp"
 #include "scene/sky_positions.hpp"
 
 namespace cupola {
 
 namespace {
 
-double luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b; }
-
-double smoothstep(double e0, double e1, double x) {
-    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
+// The shared shading's Rec. 709 luminance (shared/gamut_map.glsl), as the shaders take it.
+double luminance(const glm::dvec3& rgb) { return shading::rec709_luminance(glm::vec3(rgb)); }
 
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
@@ -103,7 +100,7 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
         light.disc_scale = lambert > 0.0 ? light.flux / lambert : 0.0;
     }
     const double rho = std::asin(std::min(b.radius_m / (g.observer_distance_au * kAstronomicalUnit_m), 1.0));
-    light.disc_weight = smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
+    light.disc_weight = glm::smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
     light.small_disc = rho < 8.0 * in.handover_start_rad;
     light.point_sigma_rad = std::sqrt(in.psf_sigma_rad * in.psf_sigma_rad + 0.25 * rho * rho);
     return light;

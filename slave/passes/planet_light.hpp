@@ -40,6 +40,8 @@ struct PlanetLight {
     // and shade a limb pixel inside it; a large disc keeps the exact per-pixel hit.
     bool small_disc = false;
     bool has_point() const { return disc_weight < 1.0 && flux > 0.0; }
+    // What the point carries: (1 - disc weight) of the light, in the map's colour.
+    glm::dvec3 point_color() const { return flux * (1.0 - disc_weight) * unit_color; }
 };
 
 // What a planet's light is computed from, besides the body itself.

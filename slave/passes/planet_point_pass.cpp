@@ -16,7 +16,7 @@ PlanetPointPass::PlanetPointPass()
 
 bool PlanetPointPass::visible_at(const PlanetLight& light, double exposure) {
     if (exposure <= 0.0) return true;
-    const glm::dvec3 color = light.flux * (1.0 - light.disc_weight) * light.unit_color;
+    const glm::dvec3 color = light.point_color();
     const double sigma = light.point_sigma_rad;
     const double peak = std::max({color.r, color.g, color.b}) / (2.0 * std::numbers::pi * sigma * sigma);
     return peak * exposure >= StarPass::kMinDisplay;
@@ -56,9 +56,8 @@ void PlanetPointPass::set_occluders(const GlProgram& program, const FrameBody& b
 }
 
 void PlanetPointPass::draw_point(const GlProgram& program, const FrameBody& b) const {
-    const glm::dvec3 color = b.light.flux * (1.0 - b.light.disc_weight) * b.light.unit_color;
     program.set("u_dir", glm::vec3(b.sphere.center_dir));
-    program.set("u_color", glm::vec3(color));
+    program.set("u_color", glm::vec3(b.light.point_color()));
     program.set("u_sigma_rad", static_cast<float>(b.light.point_sigma_rad));
     set_occluders(program, b);
     glDrawArrays(GL_POINTS, 0, 1);
