@@ -36,12 +36,6 @@ AtmospherePass::Atmospheres load_atmospheres(const SceneConfig& scene) {
     return out;
 }
 
-double scene_sun_limb_u(const SceneConfig& scene) {
-    for (const auto& b : scene.bodies)
-        if (b.kind == BodyKind::Star) return b.limb_darkening_u;
-    return 0.0;
-}
-
 std::map<uint16_t, glm::vec3> umbra_lights(const SceneConfig& scene, const AtmospherePass::Atmospheres& atmospheres) {
     std::map<uint16_t, glm::vec3> out;
     for (const auto& b : scene.bodies) {
@@ -136,7 +130,7 @@ struct SceneRenderer::Impl {
     FrameTargets targets;
     int tables = 0;                          // atmosphere table sets built or loaded
     std::unique_ptr<ShadowCasting> casting;  // which casters shadow which receiver, per frame (CPU, double)
-    EclipseShadowUniforms shadows{scene_sun_limb_u(scene)};  // the eclipse table and uniforms of shadowed passes
+    EclipseShadowUniforms shadows{scene};    // the eclipse table and uniforms of shadowed passes
     std::vector<std::unique_ptr<RenderPass>> passes;
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere

@@ -16,6 +16,7 @@
 #include "scene_renderer.hpp"
 #include "session/receive_until.hpp"
 #include "session/slave_session.hpp"
+#include "startup_prefetch.hpp"
 #include "util/monotonic_clock.hpp"
 #include "util/stats_writer.hpp"
 #include "wire/reports.hpp"
@@ -104,6 +105,7 @@ struct SlaveNode::Loop {
           channel(n.channel_),
           key(load_key_file(n.cluster_.key_file, n.cluster_.network.strict_key_permissions)),
           scene(load_scene_config(n.cluster_.scene_file)),
+          prefetch(scene),
           warp(channel_warp(channel)),
           gl(channel, n.options_.egl_device, warp),
           renderer(n.cluster_, channel, scene),
@@ -133,6 +135,7 @@ struct SlaveNode::Loop {
     const ChannelConfig& channel;
     const AuthKey key;
     const SceneConfig scene;
+    StartupPrefetch prefetch;  // the maps and the eclipse table, while EGL starts
     const std::optional<ProjectorWarp> warp;
     LoggedSurface gl;
     SceneRenderer renderer;

@@ -1,7 +1,5 @@
 #include "atmosphere/production_tables.hpp"
 
-#include <OpenImageIO/imageio.h>
-#include <sodium.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "image/table_file.hpp"
 #include "shading/shader_sources.hpp"
 #include "util/progress_bar.hpp"
 
@@ -61,51 +60,6 @@ int resolve_threads(int threads) {
     return hw == 0 ? 1 : static_cast<int>(hw);
 }
 
-bool write_table(const fs::path& path, const Texture2DData& t) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) return false;
-    OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "zip");
-    spec.attribute("cupola:format", kTableFormatVersion);
-    const fs::path tmp = path.string() + ".tmp.exr";
-    if (!out->open(tmp.string(), spec)) return false;
-    // EXR rows run top to bottom; table row 0 is v = 0: write rows reversed so the file shows v up.
-    const auto stride = static_cast<OIIO::stride_t>(t.width * sizeof(glm::vec4));
-    const auto* last_row = reinterpret_cast<const char*>(t.texels.data()) + stride * (t.height - 1);
-    const bool ok = out->write_image(OIIO::TypeDesc::FLOAT, last_row, OIIO::AutoStride, -stride) && out->close();
-    if (!ok) return false;
-    std::error_code ec;
-    fs::rename(tmp, path, ec);  // atomic: concurrent slaves never read a half-written table
-    return !ec;
-}
-
-// Reads a table written by write_table; returns false (and why) on any mismatch.
-bool read_table(const fs::path& path, int w, int h, Texture2DData& t, std::string& why) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) {
-        why = "cannot open";
-        return false;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != w || spec.height != h || spec.nchannels != 4) {
-        why = "size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
-              std::to_string(spec.nchannels) + ", expected " + std::to_string(w) + "x" + std::to_string(h) + "x4";
-        return false;
-    }
-    t = make_table(w, h);
-    const auto stride = static_cast<OIIO::stride_t>(w * sizeof(glm::vec4));
-    auto* last_row = reinterpret_cast<char*>(t.texels.data()) + stride * (h - 1);
-    if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, last_row, OIIO::AutoStride, -stride)) {
-        why = "unreadable pixels: " + in->geterror();
-        return false;
-    }
-    for (const auto& v : t.texels)
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || v.x < 0 || v.y < 0 || v.z < 0) {
-            why = "non-finite or negative texel";
-            return false;
-        }
-    return true;
-}
 // The multiple-scattering table: J_2 (atm_compute_ms), orders 3..ms_orders each from the previous
 // order's table, summed; alpha the Rayleigh anisotropy ratio (the second order's P2 moment over
 // the summed orders, atm_ms_rayleigh_factor), or 0 (isotropic) without ms_rayleigh_anisotropy.
@@ -138,28 +92,14 @@ std::size_t ProductionTables::bytes() const {
            sizeof(glm::vec4);
 }
 
-std::string default_table_cache_directory() {
-    if (const char* d = std::getenv("CUPOLA_CACHE_DIR"); d && *d) return d;
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "cupola" / "atmosphere").string();
-    if (const char* home = std::getenv("HOME"); home && *home)
-        return (fs::path(home) / ".cache" / "cupola" / "atmosphere").string();
-    return ".cupola-cache/atmosphere";
-}
+std::string default_table_cache_directory() { return cache_directory("atmosphere"); }
 
 std::string table_cache_key(const AtmosphereParameters& p, const ProductionQuality& q, const std::string& variant) {
     // The texts of the shared code that computes the tables are part of the key: a change to the
     // model's code can never reuse tables the old code built.
     std::string text = std::string(kTableFormatVersion) + "|" + p.hash_hex() + "|" + q.table_key() + "|" + variant;
     for (const char* f : kSharedShadingFiles) text += shader_source(f);
-    unsigned char h[12];
-    crypto_generichash(h, sizeof h, reinterpret_cast<const unsigned char*>(text.data()), text.size(), nullptr, 0);
-    static const char* hex = "0123456789abcdef";
-    std::string out;
-    for (unsigned char c : h) {
-        out += hex[c >> 4];
-        out += hex[c & 15];
-    }
-    return out;
+    return cache_key_hex(text);
 }
 
 ProductionTables build_production_tables(const std::string& label, const shading::AtmosphereParams& a,
@@ -219,9 +159,11 @@ ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shadi
         ProductionTables t;
         const int ms = q.multiple_scattering ? q.ms_size : 1;
         std::string why;
-        if (read_table(files[0], q.transmittance_width, q.transmittance_height, t.transmittance, why) &&
-            read_table(files[1], ms, ms, t.multiple_scattering, why) &&
-            read_table(files[2], q.irradiance_width, q.irradiance_height, t.irradiance, why)) {
+        if (read_table_file(files[0], q.transmittance_width, q.transmittance_height, kTableFormatVersion,
+                            t.transmittance, why) &&
+            read_table_file(files[1], ms, ms, kTableFormatVersion, t.multiple_scattering, why) &&
+            read_table_file(files[2], q.irradiance_width, q.irradiance_height, kTableFormatVersion, t.irradiance,
+                            why)) {
             t.from_cache = true;
             t.cache_key = key;
             spdlog::info("atmosphere {}: tables loaded from cache {}", p.name, (dir / stem).string());
@@ -238,9 +180,9 @@ ProductionTables load_or_build_tables(const AtmosphereParameters& p, const shadi
         std::error_code ec;
         fs::create_directories(dir, ec);
         bool ok = !ec;
-        ok = ok && write_table(files[0], t.transmittance);
-        ok = ok && write_table(files[1], t.multiple_scattering);
-        ok = ok && write_table(files[2], t.irradiance);
+        ok = ok && write_table_file(files[0], t.transmittance, kTableFormatVersion);
+        ok = ok && write_table_file(files[1], t.multiple_scattering, kTableFormatVersion);
+        ok = ok && write_table_file(files[2], t.irradiance, kTableFormatVersion);
         if (!ok) spdlog::warn("atmosphere {}: could not write the table cache in {}", p.name, dir.string());
     }
     return t;

@@ -1,8 +1,12 @@
 #include "eclipse/eclipse_reference.hpp"
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -13,6 +17,8 @@
 #include <tuple>
 #include <vector>
 
+#include "image/table_file.hpp"
+#include "shading/shader_sources.hpp"
 #include "shading/shared_shading.hpp"
 
 namespace cupola::eclipse {
@@ -202,20 +208,57 @@ shading::Texture2DData compute_lut(double u, int width, int height) {
 
 }  // namespace
 
-shading::Texture2DData build_eclipse_lut(double u, int width, int height) {
+namespace {
+
+void check_lut_request(double u, int width, int height) {
     if (width < 2 || height < 2)
         throw std::invalid_argument("eclipse LUT: need width, height >= 2 (got " + std::to_string(width) + " x " +
                                     std::to_string(height) + ")");
     if (!(u >= 0.0 && u <= 1.0))
         throw std::invalid_argument("eclipse LUT: need u in [0, 1] (got " + std::to_string(u) + ")");
-    // Every renderer of a process asks for the same table: computed once per (u, size).
+}
+
+}  // namespace
+
+// The cache key holds the table's inputs and the texts of the code that computes it: this file
+// (hashed by the build) and the shared shading (the texel-to-parameter mapping).
+shading::Texture2DData load_or_compute_eclipse_lut(double u, int width, int height) {
+    check_lut_request(u, width, height);
+    static constexpr const char* kFormat = "cupola-eclipse-table-v1";
+    std::string text = fmt::format("{}|{:a}|{}x{}|{:a}|{}", kFormat, u, width, height, kTableTolerance,
+                                   CUPOLA_ECLIPSE_REFERENCE_SHA256);
+    for (const char* f : kSharedShadingFiles) text += shader_source(f);
+    const std::filesystem::path dir = cache_directory("eclipse");
+    const std::filesystem::path file = dir / ("eclipse-table-" + cache_key_hex(text) + ".exr");
+    shading::Texture2DData t;
+    std::string why;
+    if (std::filesystem::exists(file)) {
+        if (read_table_file(file, width, height, kFormat, t, why)) return t;
+        spdlog::warn("eclipse table: cached {} is unusable ({}); rebuilding", file.string(), why);
+    }
+    t = compute_lut(u, width, height);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !write_table_file(file, t, kFormat))
+        spdlog::warn("eclipse table: could not write the cache in {}", dir.string());
+    return t;
+}
+
+shading::Texture2DData build_eclipse_lut(double u, int width, int height) {
+    check_lut_request(u, width, height);
+    // Every renderer of a process asks for the same table: computed (or read) once per (u, size).
     static std::mutex mutex;
     static std::map<std::tuple<double, int, int>, shading::Texture2DData> cache;
     const std::lock_guard<std::mutex> lock(mutex);
     const auto key = std::make_tuple(u, width, height);
     auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, compute_lut(u, width, height)).first;
+    if (it == cache.end()) it = cache.emplace(key, load_or_compute_eclipse_lut(u, width, height)).first;
     return it->second;
+}
+
+shading::Texture2DData compute_eclipse_lut(double u, int width, int height) {
+    check_lut_request(u, width, height);
+    return compute_lut(u, width, height);
 }
 
 }  // namespace cupola::eclipse

@@ -56,9 +56,19 @@ ReferenceResult visible_fraction_reference_detail(double a, double s, double u);
 // first contact), i.e. exactly the point whose texel centre the shader samples. r = g = b = the
 // visible fraction, alpha = 1; row j = 0 first (texture coordinate v = 0), as Texture2DData and
 // GlTexture expect. width, height >= 2 (for the exact contact row and a = 1 column, width odd and
-// (height - 1) / 8 an integer); u in [0, 1]. Runs on all hardware threads (65 x 65: ~55 ms on 2
-// cores) the first time; later calls with the same (u, width, height) return the memoised table.
+// (height - 1) / 8 an integer); u in [0, 1]. Computing it takes all hardware threads (65 x 65:
+// ~55 ms on 2 cores, a tenth of a slave's start-up), so it is kept on disk
+// (load_or_compute_eclipse_lut), and later calls with the same (u, width, height) in a process
+// return the memoised table.
 shading::Texture2DData build_eclipse_lut(double u, int width, int height);
+
+// The table from the cache on disk (image/table_file.hpp: $CUPOLA_CACHE_DIR, else
+// ~/.cache/cupola/eclipse), or computed and stored there; a damaged file is logged and replaced.
+// The key is the table's inputs and the code that computes it. Not memoised.
+shading::Texture2DData load_or_compute_eclipse_lut(double u, int width, int height);
+
+// Computed, without the cache or the memo.
+shading::Texture2DData compute_eclipse_lut(double u, int width, int height);
 
 // Default table size, from the measured error/cost trade-off (docs/eclipse-speed-vs-error.md).
 inline constexpr int kEclipseLutWidth = 65;

@@ -15,7 +15,11 @@ void check_size(int width, int height) {
 }
 }  // namespace
 
-GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb) : width_(width), height_(height) {
+GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb)
+    : GlTexture(width, height, rgb, box_filter_mip_chain(width, height, rgb)) {}
+
+GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips)
+    : width_(width), height_(height) {
     check_size(width, height);
     glCreateTextures(GL_TEXTURE_2D, 1, &id_);
     int levels = 1;
@@ -23,7 +27,13 @@ GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb) : wid
     glTextureStorage2D(id_, levels, GL_RGB16F, width, height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(id_, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
-    glGenerateTextureMipmap(id_);
+    if (static_cast<int>(mips.size()) != levels - 1)
+        throw std::invalid_argument("texture " + std::to_string(width) + "x" + std::to_string(height) + ": " +
+                                    std::to_string(mips.size()) + " mipmap levels given, " +
+                                    std::to_string(levels - 1) + " needed");
+    for (size_t i = 0; i < mips.size(); ++i)
+        glTextureSubImage2D(id_, static_cast<GLint>(i + 1), 0, 0, mips[i].width, mips[i].height, GL_RGB, GL_FLOAT,
+                            mips[i].rgb.data());
     glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_REPEAT);

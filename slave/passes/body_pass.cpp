@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "atmosphere/solar_scale.hpp"
-#include "passes/body_texture.hpp"
+#include "passes/body_map.hpp"
 
 namespace cupola {
 
@@ -31,10 +32,10 @@ BodyPass::BodyPass(const SceneConfig& scene) {
                     std::make_unique<GlProgram>("sphere.vert", "body.frag", body_defines(oblate, after_sky, shadowed));
     for (const auto& b : scene.bodies) {
         if (b.kind == BodyKind::Star) continue;
-        const BodyImage img = load_body_image(b.texture);
-        textures_[b.id] = std::make_unique<GlTexture>(img.width, img.height, img.rgb);
-        map_means_[b.id] = glm::dvec3(b.tint) * body_map_mean_rgb(img);
-        map_grids_[b.id] = luminance_grid(img.width, img.height, img.rgb, glm::dvec3(b.tint));
+        BodyMap map = take_body_map(b.texture, glm::dvec3(b.tint));
+        textures_[b.id] = std::make_unique<GlTexture>(map.image.width, map.image.height, map.image.rgb, map.mips);
+        map_means_[b.id] = map.mean_rgb;
+        map_grids_[b.id] = std::move(map.grid);
     }
 }
 

@@ -26,7 +26,7 @@ double sun_irradiance(const SunLight& sun, double d_m);
 
 class BodyPass {
 public:
-    explicit BodyPass(const SceneConfig& scene);  // loads every planet/moon texture once
+    explicit BodyPass(const SceneConfig& scene);  // every planet/moon map, once (body_map.hpp: prefetched or prepared)
     // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
     // sky: the frame's sky was drawn first; the body replaces it, composed with the air in front
     // of it (beyond_the_air.hpp), and writes no geometry (the bound framebuffer is the colour alone).

@@ -7,6 +7,12 @@
 namespace cupola {
 
 namespace {
+double scene_sun_limb_u(const SceneConfig& scene) {
+    for (const auto& b : scene.bodies)
+        if (b.kind == BodyKind::Star) return b.limb_darkening_u;
+    return 0.0;
+}
+
 GlTexture make_lut(double limb_u) {
     const shading::Texture2DData t =
         eclipse::build_eclipse_lut(limb_u, eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight);
@@ -16,6 +22,9 @@ GlTexture make_lut(double limb_u) {
 
 EclipseShadowUniforms::EclipseShadowUniforms(double limb_u)
     : lut_(make_lut(limb_u)), lut_size_(eclipse::kEclipseLutWidth, eclipse::kEclipseLutHeight) {}
+
+EclipseShadowUniforms::EclipseShadowUniforms(const SceneConfig& scene)
+    : EclipseShadowUniforms(scene_sun_limb_u(scene)) {}
 
 void EclipseShadowUniforms::apply(const GlProgram& p, const shading::EclipseCasters& e, GLuint unit) const {
     p.set("u_ecl.count", e.count);

@@ -7,6 +7,8 @@
 // Without the relay every node uses one config (group 239.255.61.1). With it, the master sends to
 // 239.255.61.1, the relay forwards to 239.255.61.2 where the slaves listen, and the slaves send
 // their reports to the relay, which forwards them to the master.
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -181,6 +183,35 @@ public:
     }
 
     nlohmann::json stats(const std::string& file) const { return nlohmann::json::parse(read_text(file)); }
+
+    // Waits until the channel has written `frame`.
+    bool wait_for_frame(int channel, uint64_t frame, std::chrono::seconds limit = std::chrono::seconds(120)) const {
+        const std::string f = out_dir(channel) + "/" + frame_file_name(frame, "png");
+        return wait_until([&] { return std::filesystem::exists(f); }, limit);
+    }
+
+    // SIGKILLs channel `id`'s slave once it has written frame `at_frame`, starts it again (its log
+    // gets `suffix`), and returns the seconds from the restart to the first frame file it wrote (the
+    // file's own time, so polling adds nothing); nullopt when a step did not happen in time.
+    std::optional<double> kill_and_restart(int id, uint64_t at_frame, const std::string& suffix) {
+        auto& slave = slaves.at(static_cast<size_t>(id));
+        if (!wait_for_frame(id, at_frame)) return std::nullopt;
+        slave.kill(SIGKILL);
+        if (!slave.wait_for(std::chrono::seconds(5))) return std::nullopt;
+        const auto restarted = std::filesystem::file_time_type::clock::now();
+        slave = start_slave(id, suffix);
+        std::optional<std::filesystem::file_time_type> first;
+        auto rendered_again = [&] {
+            for (const auto& e : std::filesystem::directory_iterator(out_dir(id))) {
+                std::error_code ec;
+                const auto t = std::filesystem::last_write_time(e.path(), ec);
+                if (!ec && e.path().extension() == ".png" && t > restarted && (!first || t < *first)) first = t;
+            }
+            return first.has_value();
+        };
+        if (!wait_until(rendered_again, std::chrono::seconds(60))) return std::nullopt;
+        return std::chrono::duration<double>(*first - restarted).count();
+    }
 
     NetnsTestbed bed;
     NetnsClusterOptions opt;
