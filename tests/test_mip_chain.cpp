@@ -89,5 +89,5 @@ TEST(MipChain, BadInputIsNamed) {
         EXPECT_NE(std::string(e.what()).find("4x4 RGB image needs 48 floats, got 47"), std::string::npos) << e.what();
     }
     EXPECT_THROW(box_filter_mip_chain(0, 4, {}), std::invalid_argument);
-    EXPECT_THROW(box_filter_half(-2, 4, {}), std::invalid_argument);
+    EXPECT_THROW(box_filter_mip_chain(-2, 4, {}), std::invalid_argument);
 }

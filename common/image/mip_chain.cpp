@@ -90,10 +90,8 @@ std::vector<float> halve_even(int w, int h, const std::vector<float>& rgb) {
     return out;
 }
 
-}  // namespace
-
+// One level down: (width, height) -> (max(1, width / 2), max(1, height / 2)).
 MipLevel box_filter_half(int width, int height, const std::vector<float>& rgb) {
-    check_image(width, height, rgb);
     MipLevel next;
     next.width = std::max(1, width / 2);
     next.height = std::max(1, height / 2);
@@ -104,6 +102,8 @@ MipLevel box_filter_half(int width, int height, const std::vector<float>& rgb) {
     next.rgb = resample_columns(next.width, height, resample_rows(width, height, rgb, next.width), next.height);
     return next;
 }
+
+}  // namespace
 
 std::vector<MipLevel> box_filter_mip_chain(int width, int height, const std::vector<float>& rgb) {
     check_image(width, height, rgb);

@@ -20,7 +20,4 @@ struct MipLevel {
 // is not width*height*3 or a size is not positive.
 std::vector<MipLevel> box_filter_mip_chain(int width, int height, const std::vector<float>& rgb);
 
-// One level down: (width, height) -> (max(1, width / 2), max(1, height / 2)).
-MipLevel box_filter_half(int width, int height, const std::vector<float>& rgb);
-
 }  // namespace cupola

@@ -15,9 +15,6 @@ void check_size(int width, int height) {
 }
 }  // namespace
 
-GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb)
-    : GlTexture(width, height, rgb, box_filter_mip_chain(width, height, rgb)) {}
-
 GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips)
     : width_(width), height_(height) {
     check_size(width, height);

@@ -1,7 +1,8 @@
 #pragma once
 // 2D float textures (RAII):
 //  - body surface maps: RGB16F with a full mipmap chain built on the CPU (image/mip_chain; a
-//    small disc samples the level its pixels span), trilinear filtering, repeating in s (longitude), clamped in t;
+//    small disc samples the level its pixels span), trilinear filtering, repeating in s
+//    (longitude), clamped in t;
 //  - RGBA32F data and render targets: clamped to the edge in both directions, linear or nearest
 //    filtering, one level (sampled with textureLod / texelFetch).
 #include <glm/glm.hpp>
@@ -15,10 +16,9 @@ namespace cupola {
 
 class GlTexture {
 public:
-    // rgb: width*height*3 linear floats, row 0 first (texture coordinate t = 0); its mipmap
-    // levels 1.. as box_filter_mip_chain makes them (computed here when not given).
+    // rgb: width*height*3 linear floats, row 0 first (texture coordinate t = 0); mips: its levels
+    // 1.. as box_filter_mip_chain makes them (std::invalid_argument when the count is wrong).
     GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips);
-    GlTexture(int width, int height, const std::vector<float>& rgb);
     // RGBA32F; rgba: width*height texels, row 0 first, or nullptr for an uninitialised render target.
     GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter);
     ~GlTexture();
