@@ -1,7 +1,8 @@
 #version 450 core
 // A planet or moon: analytic ray-sphere hit, equirectangular texture in the body frame
-// (lon = atan(y, x), north = +Z), Lambert-lit by the sun. Also writes the deferred geometry
-// the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres, and a
+// (lon = atan(y, x), north = +Z), lit by the sun through its surface's photometric function
+// (Lambert or lunar-Lambert, shared/surface_photometry.glsl) and by the body it circles
+// (earthshine). Also writes the deferred geometry the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres, and a
 // logarithmic depth of that distance for the glare probe's occlusion queries.
 // Eclipse shadows: the sunlight at the surface point (normal * radius, relative to the centre,
 // like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl),
@@ -23,6 +24,10 @@ uniform vec3 u_sun_dir;          // unit, channel frame, from the body towards t
 uniform vec3 u_lit;              // albedo / pi * irradiance * tint
 uniform vec3 u_reflectance;      // albedo * tint
 uniform sampler2D u_texture;     // linear RGB, row 0 = north, mipmapped
+uniform float u_limb_weight;     // lunar-Lambert L at the Sun's phase (0: Lambert), surface_photometry.glsl
+uniform vec3 u_shine_dir;        // unit, channel frame, toward the body this one circles (earthshine)
+uniform vec3 u_shine_lit;        // its light, as u_lit has the Sun's (0: none)
+uniform float u_shine_limb_weight;
 uniform int u_limb_aa;           // 1: a small disc, its limb antialiased (PlanetLight::small_disc)
 uniform float u_map_lod;         // the map level a pixel spans at the disc's centre (from the CPU)
 uniform EclipseCasters u_ecl;    // channel frame, metres from the body's centre
@@ -96,17 +101,21 @@ void main() {
     vec3 surface = n;
 #endif
     vec3 albedo_map = textureLod(u_texture, body_map_uv(u_channel_to_body, n), u_map_lod).rgb;
+    float cos_e = max(-dot(n, v), 0.0);
     float cos_i = max(dot(n, u_sun_dir), 0.0);
+    float sunlit = lunar_lambert(cos_i, cos_e, u_limb_weight);
     vec3 light = vec3(1.0);
 #if BODY_ECLIPSE
     if (u_ecl.count > 0 && cos_i > 0.0) {
         light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, surface * u_distances_m.y);
     }
 #endif
+    vec3 shine = u_shine_lit * lunar_lambert(dot(n, u_shine_dir), cos_e, u_shine_limb_weight);
+    vec3 radiance = (u_lit * sunlit * light + shine) * albedo_map;
 #if BODY_AFTER_SKY
-    frag_color = coverage * through_the_air(v, u_lit * cos_i * albedo_map * light);
+    frag_color = coverage * through_the_air(v, radiance);
 #else
-    frag_color = coverage * vec4(u_lit * cos_i * albedo_map * light, 1.0);
+    frag_color = coverage * vec4(radiance, 1.0);
 #if BODY_OBLATE
     float distance_m = sphere_hit_distance(vs, u_center_dir, hit.w, u_distances_m) / stretch;
 #else

@@ -16,6 +16,7 @@
 #include "passes/glare_halo_pass.hpp"
 #include "passes/glare_pass.hpp"
 #include "passes/glare_probe.hpp"
+#include "passes/milky_way_pass.hpp"
 #include "passes/painter_pass.hpp"
 #include "passes/pattern_pass.hpp"
 #include "passes/planet_point_pass.hpp"
@@ -25,6 +26,7 @@
 #include "scene/sky_positions.hpp"
 #include "scene/snapshot_bodies.hpp"
 #include "scene/star_catalog.hpp"
+#include "shading/shared_shading.hpp"
 
 namespace cupola {
 
@@ -62,7 +64,7 @@ struct SceneRenderer::Impl {
           tilt(dome_tilt_rotation(cluster.dome.tilt_deg) * channel_rotation(ch.orientation)),
           targets(ch.width, ch.height) {
         psf_sigma_rad = glm::radians(scene.stars.psf_sigma_arcmin / 60.0);
-        double coarsest_pixel_rad = pixel_angle_rad(frustum);
+        coarsest_pixel_rad = pixel_angle_rad(frustum);
         for (const auto& c : cluster.channels)
             coarsest_pixel_rad = std::max(coarsest_pixel_rad, pixel_angle_rad(c.frustum()));
         point_to_disc_start = point_to_disc_start_rad(psf_sigma_rad, coarsest_pixel_rad);
@@ -75,6 +77,10 @@ struct SceneRenderer::Impl {
     // The pipeline, in the order it runs. What each pass reads and writes is its io(); the
     // targets each draw goes to follow from that (FrameTargets).
     void build_pipeline(const ClusterConfig& cluster, const ChannelConfig& ch, AtmospherePass::Atmospheres atm) {
+        // The Milky Way, when the scene has one: colour, additive, behind everything.
+        if (scene.milky_way.present)
+            milky_way =
+                &add(std::make_unique<MilkyWayPass>(scene.milky_way, scene.stars.zero_mag_flux, coarsest_pixel_rad));
         // Stars: colour, additive.
         stars = &add(std::make_unique<StarPass>(scene.stars,
                                                 load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit)));
@@ -97,10 +103,12 @@ struct SceneRenderer::Impl {
             painter->set_surface_drawer(atmosphere);
             planet_points->set_sky_in_front(atmosphere);
             stars->set_sky_source(atmosphere);  // each star judged against the sky behind it
+            if (milky_way) milky_way->set_sky_in_front(atmosphere);
         }
         // In a frame whose sky is drawn first, the stars and the Sun and bodies draw here instead
         // of in their own places above, each taking the air in front of it (beyond_the_air.hpp).
         if (atmosphere) {
+            if (milky_way) add(std::make_unique<AfterTheSky>(*milky_way));
             add(std::make_unique<AfterTheSky>(*stars));
             add(std::make_unique<AfterTheSky>(*painter));
             add(std::make_unique<AfterTheSky>(*planet_points));
@@ -134,12 +142,15 @@ struct SceneRenderer::Impl {
     std::vector<std::unique_ptr<RenderPass>> passes;
     GlareProbe* glare_probe = nullptr;     // only when the scene has glare
     AtmospherePass* atmosphere = nullptr;  // only when some body has an atmosphere
+    MilkyWayPass* milky_way = nullptr;
     StarPass* stars = nullptr;
     PainterPass* painter = nullptr;
     PlanetPointPass* planet_points = nullptr;
     double psf_sigma_rad = 0.0;        // the stars' PSF (cluster-wide)
     double point_to_disc_start = 0.0;  // planet_light.hpp: from the PSF and the cluster's coarsest pixel
+    double coarsest_pixel_rad = 0.0;   // of every channel of the cluster: cluster-wide detail follows it
     void set_planet_lights(FrameContext& f) const;
+    PlanetShine planetshine_on(const FrameContext& f, const BodyConfig& body, const BodyState& state) const;
     PatternPass* pattern = nullptr;  // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
     bool stars_see_the_sky = true;  // set_stars_see_the_sky(): a sky drawn first needs it
@@ -212,8 +223,30 @@ void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
         if (it.body->kind == BodyKind::Star || it.body->atmosphere.present) continue;
         in.map_mean_rgb = painter->bodies().map_mean_rgb(it.body->id);
         in.map_grid = painter->bodies().map_grid(it.body->id);
+        const PlanetShine shine = planetshine_on(f, *it.body, *it.state);
+        in.shine = &shine;
         it.light = planet_light(*it.body, *it.state, in);
     }
+}
+
+// The light of the body a moon circles (its shadow group's parent: the Earth on the Moon), if that
+// body is in the snapshot.
+PlanetShine SceneRenderer::Impl::planetshine_on(const FrameContext& f, const BodyConfig& body,
+                                                const BodyState& state) const {
+    PlanetShine shine;
+    for (const ShadowGroupConfig& g : scene.shadows.groups) {
+        if (std::find(g.children.begin(), g.children.end(), body.id) == g.children.end()) continue;
+        for (const FrameBody& source : f.far_to_near) {
+            if (source.body->id != g.parent) continue;
+            const glm::dvec3 mean = painter->bodies().map_mean_rgb(g.parent);
+            const double lum = shading::rec709_luminance(glm::vec3(mean));
+            shine.position_m = source.state->position_m;
+            shine.unit_color = lum > 0.0 ? mean / lum : glm::dvec3(1.0);
+            shine.irradiance = planetshine_irradiance(*source.body, *source.state, lum, state.position_m,
+                                                      f.light.position_m, sun_irradiance(f.light, kAstronomicalUnit_m));
+        }
+    }
+    return shine;
 }
 
 void SceneRenderer::Impl::check_what_is_before_the_sky() {

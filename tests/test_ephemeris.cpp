@@ -50,6 +50,24 @@ TEST(TimeScales, LeapSecondEraUsesTaiMinusUtc) {
     }
 }
 
+// Past ERFA's leap seconds nobody has announced the leap seconds to come, but UTC will stay within
+// 0.9 s of UT1: a time given there is the Earth's rotation (UT1), and TT = UT1 + Delta T. Taking
+// TAI - UTC frozen at its last value instead made TT - Delta T drift from the time given by 40 s in
+// 2058: a ground observer's sky turned 10 arcmin.
+TEST(TimeScales, PastTheLeapSecondsTheTimeGivenIsTheEarthsRotation) {
+    for (const char* iso : {"2040-07-20T09:37:23Z", "2058-04-28T12:45:42Z", "2100-01-01T00:00:00Z"}) {
+        const double t = utc_iso_to_j2000_seconds(iso);
+        int y, mo, d, h, mi;
+        double s, d1, d2;
+        ASSERT_EQ(std::sscanf(iso, "%d-%d-%dT%d:%d:%lfZ", &y, &mo, &d, &h, &mi, &s), 6);
+        eraDtf2d("UT1", y, mo, d, h, mi, s, &d1, &d2);
+        const JulianDate ut1 = tt_to_ut1_jd(t);
+        EXPECT_NEAR(((ut1.jd1 - d1) + (ut1.jd2 - d2)) * ERFA_DAYSEC, 0.0, 1e-3) << iso;
+        EXPECT_GT(delta_t_seconds(t), 69.0) << iso;
+        EXPECT_EQ(tt_to_utc_iso(t).substr(0, 19), std::string(iso).substr(0, 19));
+    }
+}
+
 TEST(TimeScales, TableBefore1972AndParabolaBefore1620) {
     // Rows of data/time/delta_t.csv (beginning of the year) and linear interpolation between them.
     EXPECT_NEAR(tabulated_delta_t_seconds(1900.0), -2.72, 1e-9);

@@ -21,6 +21,7 @@
 #include "scene/planet_magnitude.hpp"
 #include "scene/sky_positions.hpp"
 #include "scene_renderer.hpp"
+#include "support/planet_frames.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -58,11 +59,7 @@ SceneConfig planet_scene(const std::string& dir, const PlanetInfo& p) {
 }
 
 ChannelConfig channel(double left_deg, double right_deg, int width, double up_down_deg = 20.0) {
-    ChannelConfig ch;
-    ch.fov = {left_deg, right_deg, up_down_deg, up_down_deg};
-    ch.width = width;
-    ch.height = 256;
-    return ch;
+    return test::straight_channel(left_deg, right_deg, width, up_down_deg);
 }
 
 // The planet at the origin (pole +Z), the Sun at r AU along `to_sun`, the camera at `delta_m` along a
@@ -81,32 +78,8 @@ Snapshot planet_view(double phase_deg, double r_au, double delta_m) {
     return s;
 }
 
-// The frame's light: each pixel's radiance (luminance) times its solid angle.
-double frame_flux(const Image& img, const ChannelConfig& ch) {
-    const ChannelFrustum f = ch.frustum();
-    const double sx = (f.tan_left() + f.tan_right()) / img.width, sy = (f.tan_down() + f.tan_up()) / img.height;
-    double sum = 0.0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const double tx = -f.tan_left() + (x + 0.5) * sx, ty = f.tan_up() - (y + 0.5) * sy;
-            const double q = 1.0 + tx * tx + ty * ty;
-            const float* p = img.pixel(x, y);
-            sum += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) * sx * sy / (q * std::sqrt(q));
-        }
-    return sum;
-}
-
-// With CUPOLA_TEST_IMAGES=DIR, the frame goes to DIR/NAME/ as a PNG (docs/images/planets-*.png),
-// scaled so that its brightest value reads 1.
-void maybe_write(const std::string& name, Image img) {
-    const char* dir = std::getenv("CUPOLA_TEST_IMAGES");
-    if (!dir) return;
-    float peak = 1e-30f;
-    for (float v : img.rgba) peak = std::max(peak, v);
-    for (float& v : img.rgba) v /= peak;
-    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 1.0f;
-    write_frame(std::string(dir) + "/" + name, img, FrameMetadata{}, {"png"}, 1.0);
-}
+using test::frame_flux;
+void maybe_write(const std::string& name, const Image& img) { test::maybe_write_frame(name, img); }
 
 double sun_irradiance_1au(const SceneConfig& scene) {
     return atmosphere::sun_irradiance_scene_units(scene.bodies[0], kAu);

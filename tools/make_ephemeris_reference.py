@@ -2,7 +2,8 @@
 """Write the independent ephemeris Cupola's positions are tested against (tests/test_ephemeris_reference.cpp).
 
 Usage: python3 tools/make_ephemeris_reference.py data/ephemeris/pyephem_reference.csv \
-                                                 data/ephemeris/pyephem_orientation.csv
+                                                 data/ephemeris/pyephem_orientation.csv \
+                                                 data/ephemeris/pyephem_topocentric.csv
 
 Source: PyEphem (Debian package python3-ephem, 4.1.4), whose libastro computes the planets from its
 own truncated VSOP87 code, the Moon from its own ELP 2000-82 code and Pluto from its own series,
@@ -17,7 +18,14 @@ The second file holds orientations on 10 instants each (seed 53), geocentric: th
 in longitude and latitude (libastro's own lunar libration code, after Meeus 1998 ch. 53) and
 Jupiter's System II central meridian (libastro, after Meeus 1998 ch. 43).
 Columns: body,tt_jd,quantity,value_deg.
+
+The third holds the Moon seen from three places on the ground on 12 instants each (seed 71,
+1975-2060 UTC, taken as UT): PyEphem's apparent topocentric place (ra, dec; no refraction) and its
+apparent geocentric place (g_ra, g_dec), both for the equator and equinox of date. Their difference
+is the topocentric parallax the test checks.
+Columns: lat_deg,lon_deg,alt_m,utc,topo_ra_deg,topo_dec_deg,geo_ra_deg,geo_dec_deg.
 """
+import datetime
 import math
 import random
 import sys
@@ -53,8 +61,29 @@ def orientation_rows():
     return rows
 
 
+SITES = [(50.927, 11.586, 150.0), (-0.18, -78.47, 2850.0), (-33.87, 151.21, 50.0)]
+
+
+def topocentric_rows():
+    rng = random.Random(71)
+    first, last = ephem.Date("1975/01/01"), ephem.Date("2060/01/01")
+    rows = ["lat_deg,lon_deg,alt_m,utc,topo_ra_deg,topo_dec_deg,geo_ra_deg,geo_dec_deg"]
+    for lat, lon, alt in SITES:
+        for _ in range(12):
+            day = ephem.Date(round(first + (last - first) * rng.random()) + rng.randrange(86400) / 86400.0)
+            when = (day.datetime() + datetime.timedelta(microseconds=500000)).replace(microsecond=0)
+            date = ephem.Date(when)
+            o = ephem.Observer()
+            o.lat, o.lon, o.elevation, o.pressure, o.date = str(lat), str(lon), alt, 0.0, date
+            m = ephem.Moon(o)
+            utc = when.strftime("%Y-%m-%dT%H:%M:%SZ")
+            rows.append(f"{lat},{lon},{alt},{utc},{math.degrees(m.ra):.9f},{math.degrees(m.dec):.9f},"
+                        f"{math.degrees(m.g_ra):.9f},{math.degrees(m.g_dec):.9f}")
+    return rows
+
+
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) != 4:
         raise SystemExit(__doc__)
     rng = random.Random(18)
     j1900, j2100 = 2415020.5, 2488069.5
@@ -68,6 +97,8 @@ def main():
         f.write("\n".join(rows) + "\n")
     with open(sys.argv[2], "w") as f:
         f.write("\n".join(orientation_rows()) + "\n")
+    with open(sys.argv[3], "w") as f:
+        f.write("\n".join(topocentric_rows()) + "\n")
 
 
 if __name__ == "__main__":

@@ -149,6 +149,9 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
     c.texture = read_texture(b, dir, c.name);
     if (auto t = b.optional_dvec3("tint")) c.tint = glm::vec3(*t);
     c.albedo = b.declared_number("albedo");
+    c.photometry = b.declared_choice("photometry") == "lunar-lambert" ? Photometry::LunarLambert : Photometry::Lambert;
+    if (c.photometry != Photometry::Lambert && c.kind == BodyKind::Star)
+        b.fail("photometry", "a star is not lit: it has no surface photometry");
     c.limb_darkening_u = b.declared_number("limb_darkening_u");
     c.radiance = b.declared_number("radiance");
     if (auto u = b.optional_dvec3("umbra_light")) {
@@ -165,6 +168,18 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
             b.fail("flattening", "a body with an atmosphere is drawn as a sphere (its air is a spherical shell)");
     }
     b.reject_unknown_keys();
+    return c;
+}
+
+MilkyWayConfig read_milky_way(const JsonReader& m, const std::string& dir) {
+    MilkyWayConfig c;
+    c.present = true;
+    c.texture = resolve_path(dir, m.string("texture"));
+    if (!fs::is_regular_file(c.texture))
+        m.fail("texture", "image \"" + c.texture + "\" does not exist (install it with scripts/setup.sh)");
+    c.surface_brightness = m.declared_number("surface_brightness");
+    c.latitude_extent_deg = m.declared_number("latitude_extent_deg");
+    m.reject_unknown_keys();
     return c;
 }
 
@@ -196,6 +211,7 @@ SceneConfig load_scene_config(const std::string& file) {
     s.stars = read_stars(r.child("stars"), dir);
     s.shadows = read_shadows(r.section("shadows"), s);
     if (auto g = r.optional_child("glare")) s.glare = read_glare(*g);
+    if (auto m = r.optional_child("milky_way")) s.milky_way = read_milky_way(*m, dir);
     r.reject_unknown_keys();
     return s;
 }

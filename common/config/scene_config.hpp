@@ -15,6 +15,8 @@
 namespace cupola {
 
 enum class BodyKind { Star, Planet, Moon };
+// How a planet's or moon's surface reflects (shaders/shared/surface_photometry.glsl).
+enum class Photometry { Lambert, LunarLambert };
 
 // A body's atmosphere: a physical preset ("earth", "mars") with optional overrides, resolved to
 // full parameters whose ground is the body's radius; and the production model's quality level.
@@ -29,12 +31,13 @@ struct BodyConfig {
     uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
     BodyKind kind = BodyKind::Planet;
-    std::string ephemeris;          // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto"
-    double radius_m = 1.0;          // equatorial radius (the mean one for a sphere)
-    double flattening = 0.0;        // (a - c) / a: the polar radius is radius_m * (1 - flattening)
-    std::string texture;            // resolved image path, or "generated:<name>"
-    glm::vec3 tint{1.0f};           // multiplies the texture (or the disc colour of a star)
-    double albedo = 0.3;            // planets and moons
+    std::string ephemeris;    // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto"
+    double radius_m = 1.0;    // equatorial radius (the mean one for a sphere)
+    double flattening = 0.0;  // (a - c) / a: the polar radius is radius_m * (1 - flattening)
+    std::string texture;      // resolved image path, or "generated:<name>"
+    glm::vec3 tint{1.0f};     // multiplies the texture (or the disc colour of a star)
+    double albedo = 0.3;      // planets and moons
+    Photometry photometry = Photometry::Lambert;
     double limb_darkening_u = 0.6;  // stars: linear limb-darkening coefficient
     double radiance = 1.0e3;        // stars: disc-centre radiance in scene units (planets are lit by it)
     AtmosphereConfig atmosphere;    // planets and moons
@@ -107,12 +110,21 @@ struct GlareConfig {
     int halo_downsample = 4;  // the halo at 1/this resolution per axis (1: all at full resolution)
 };
 
+// The Milky Way as a map in galactic coordinates (passes/milky_way_pass).
+struct MilkyWayConfig {
+    bool present = false;
+    std::string texture;               // resolved image path
+    double surface_brightness = 20.5;  // V mag / arcsec^2 of the map's brightest 1 % of texels
+    double latitude_extent_deg = 0.0;  // of the top row; 0: from the map's shape (square texels)
+};
+
 struct SceneConfig {
     std::string file;
     std::vector<BodyConfig> bodies;
     StarFieldConfig stars;
     ShadowConfig shadows;
     GlareConfig glare;
+    MilkyWayConfig milky_way;
 
     const BodyConfig* find(const std::string& name) const;
 };

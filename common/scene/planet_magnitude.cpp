@@ -40,13 +40,16 @@ double uranus(double a, const PlanetGeometry& g) {
     return a <= 3.1 ? v : v + 6.587e-3 * a + 1.045e-4 * a * a;
 }
 double neptune(double a) { return a <= 1.9 ? -7.00 : -7.00 + 7.944e-3 * a + 9.617e-5 * a * a; }
+// The Moon: Allen's V(1, 0) = +0.21 and his phase law 0.026 a + 4e-9 a^4 (Allen 1973, the Moon's photometry;
+// Krisciunas & Schaefer 1991, equation 9).
+double moon(double a) { return 0.21 + 0.026 * a + 4.0e-9 * a * a * a * a; }
 
-struct Curve {
-    const char* planet;
-    double max_phase_deg;
-};
-constexpr Curve kCurves[] = {{"mercury", 170.0}, {"venus", 179.0},  {"earth", 170.0},  {"mars", 120.0},
-                             {"jupiter", 130.0}, {"saturn", 150.0}, {"uranus", 154.0}, {"neptune", 133.14}};
+// The equatorial radii (Archinal et al. 2018, Table 4; the Moon's mean radius) of the bodies the
+// curves were measured on.
+constexpr PhaseCurve kCurves[] = {
+    {"mercury", 170.0, 2.44053e6}, {"venus", 179.0, 6.0518e6},    {"earth", 170.0, 6.378137e6},
+    {"mars", 120.0, 3.39619e6},    {"jupiter", 130.0, 7.1492e7},  {"saturn", 150.0, 6.0268e7},
+    {"uranus", 154.0, 2.5559e7},   {"neptune", 133.14, 2.4764e7}, {"moon", 150.0, 1.7374e6}};
 
 double unit_magnitude(const std::string& p, double a, const PlanetGeometry& g) {
     if (p == "mercury") return mercury(a);
@@ -56,6 +59,7 @@ double unit_magnitude(const std::string& p, double a, const PlanetGeometry& g) {
     if (p == "jupiter") return jupiter(a);
     if (p == "saturn") return saturn_globe(a);
     if (p == "uranus") return uranus(a, g);
+    if (p == "moon") return moon(a);
     return neptune(a);
 }
 
@@ -63,10 +67,20 @@ double unit_magnitude(const std::string& p, double a, const PlanetGeometry& g) {
 
 double lambert_phase(double a) { return (std::sin(a) + (std::numbers::pi - a) * std::cos(a)) / std::numbers::pi; }
 
+double lommel_seeliger_phase(double a) {
+    if (a <= 0.0) return 1.0;
+    if (a >= std::numbers::pi) return 0.0;
+    return 1.0 - std::sin(0.5 * a) * std::tan(0.5 * a) * std::log(1.0 / std::tan(0.25 * a));
+}
+
+const PhaseCurve* find_phase_curve(const std::string& planet) {
+    for (const PhaseCurve& c : kCurves)
+        if (planet == c.planet) return &c;
+    return nullptr;
+}
+
 std::optional<double> planet_magnitude_v(const std::string& planet, const PlanetGeometry& g) {
-    const Curve* curve = nullptr;
-    for (const Curve& c : kCurves)
-        if (planet == c.planet) curve = &c;
+    const PhaseCurve* curve = find_phase_curve(planet);
     if (!curve) return std::nullopt;
     const double a = std::clamp(g.phase_deg, 0.0, 180.0), fit = std::min(a, curve->max_phase_deg);
     double v = unit_magnitude(planet, fit, g) + 5.0 * std::log10(g.sun_distance_au * g.observer_distance_au);

@@ -5,8 +5,10 @@
 //   Mercury (2), Venus (3, 4), Earth (5), Mars (6, 7, without the rotation and season tables of
 //   +-0.06 mag), Jupiter (8, 9), Saturn's globe alone (11, 12: the rings are not drawn),
 //   Uranus (13, 14, with its sub-latitude term), Neptune (16, 17, after 2000).
+// The Moon: Allen's phase law (Allen 1973, as Krisciunas & Schaefer 1991 give it in
+// their equation 9), V(1, a) = 0.21 + 0.026 a + 4e-9 a^4, a in degrees, up to 150 degrees.
 // Beyond the largest phase angle each fit was made from (Mercury 170, Venus 179, Earth 170, Mars 120,
-// Jupiter 130, Saturn 150, Uranus 154, Neptune 133.14 deg) the curve goes on as a Lambert sphere's
+// Jupiter 130, Saturn 150, Uranus 154, Neptune 133.14, Moon 150 deg) the curve goes on as a Lambert sphere's
 // from the value there, so it stays continuous and finite up to 180 deg.
 #include <optional>
 #include <string>
@@ -24,11 +26,25 @@ struct PlanetGeometry {
     double sub_observer_latitude_deg = 0.0;
 };
 
+// A measured phase curve: the largest phase angle of its data, and the radius of the body it was
+// measured on (a scene body of another size scales its light by the square of the ratio).
+struct PhaseCurve {
+    const char* planet;
+    double max_phase_deg;
+    double radius_m;
+};
+// The curve of the planet named by its ephemeris; null for a body without one.
+const PhaseCurve* find_phase_curve(const std::string& planet);
+
 // V of the planet named by its ephemeris ("mercury" ... "neptune"); none for a body without a
-// fitted curve (Pluto, the moons).
+// fitted curve (Pluto, the moons other than ours: "moon" has Allen's).
 std::optional<double> planet_magnitude_v(const std::string& planet, const PlanetGeometry& g);
 
 // A Lambert sphere's phase function (sin a + (pi - a) cos a) / pi: 1 at full phase.
 double lambert_phase(double phase_rad);
+
+// A Lommel-Seeliger sphere's: 1 - sin(a/2) tan(a/2) ln(cot(a/4)), 1 at full phase. The integral of
+// 2 cos_i cos_e / (cos_i + cos_e) over the lit, visible disc is pi times it.
+double lommel_seeliger_phase(double phase_rad);
 
 }  // namespace cupola

@@ -108,8 +108,9 @@ double utc_iso_to_j2000_seconds(const std::string& iso) {
     double u1, u2, a1, a2, t1, t2;
     if (eraDtf2d("UTC", y, mo, d, h, mi, s, &u1, &u2) < 0)
         throw std::invalid_argument("\"" + iso + "\" is not a valid UTC date and time");
-    if (y < 1960) {
-        // No UTC yet: the time is UT1, and TT = UT1 + ΔT (ΔT evaluated at TT, one iteration).
+    if (y < 1960 || y >= leap_second_horizon_year()) {
+        // No UTC yet, or past the leap seconds anyone knows (UTC will stay within 0.9 s of UT1):
+        // the time is UT1, and TT = UT1 + ΔT (ΔT evaluated at TT, one iteration).
         const double ut1 = ((u1 - ERFA_DJ00) + u2) * ERFA_DAYSEC;
         return ut1 + delta_t_seconds(ut1 + delta_t_seconds(ut1));
     }
@@ -122,7 +123,7 @@ std::string tt_to_utc_iso(double t_tt_s) {
     const JulianDate tt = tt_julian_date(t_tt_s);
     double u1, u2;
     const char* scale = "UTC";
-    if (decimal_year(t_tt_s) < 1960.0) {
+    if (decimal_year(t_tt_s) < 1960.0 || decimal_year(t_tt_s) >= leap_second_horizon_year()) {
         const JulianDate ut1 = tt_to_ut1_jd(t_tt_s);
         u1 = ut1.jd1, u2 = ut1.jd2, scale = "UT1";
     } else {

@@ -22,11 +22,15 @@ struct JulianDate {
     double jd2 = 0.0;
 };
 
-// "2024-04-08T18:17:00Z" or "2024-04-08T18:17:00.5" (UTC) -> seconds since J2000 TT.
+// "2024-04-08T18:17:00Z" or "2024-04-08T18:17:00.5" (UTC) -> seconds since J2000 TT. Before 1960
+// and from the first year ERFA's leap-second table does not vouch for, the time is taken as UT1
+// (UTC stays within 0.9 s of it) and TT = UT1 + Delta T, so that the Earth turns with the time
+// given and not with leap seconds nobody has announced yet.
 // Throws std::invalid_argument naming the text on a malformed or impossible date.
 double utc_iso_to_j2000_seconds(const std::string& iso);
 
-// Seconds since J2000 TT -> "YYYY-MM-DDTHH:MM:SS.sZ" (UTC, tenths of a second; UT1 before 1960).
+// Seconds since J2000 TT -> "YYYY-MM-DDTHH:MM:SS.sZ" (UTC, tenths of a second; UT1 before 1960 and past the leap
+// seconds).
 std::string tt_to_utc_iso(double t_tt_s);
 
 // ΔT = TT - UT1 in seconds at the given TT (rules above). Throws std::runtime_error if a date

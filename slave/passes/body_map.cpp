@@ -43,6 +43,7 @@ std::thread prefetch_body_maps(const SceneConfig& scene) {
     std::vector<std::pair<std::string, glm::dvec3>> maps;
     for (const auto& b : scene.bodies)
         if (b.kind != BodyKind::Star) maps.emplace_back(b.texture, glm::dvec3(b.tint));
+    if (scene.milky_way.present) maps.emplace_back(scene.milky_way.texture, glm::dvec3(1.0));
     auto tasks = std::make_shared<std::vector<std::packaged_task<BodyMap()>>>();
     {
         const std::lock_guard<std::mutex> lock(store().mutex);

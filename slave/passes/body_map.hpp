@@ -31,7 +31,8 @@ struct BodyMap {
 
 BodyMap prepare_body_map(const std::string& texture, const glm::dvec3& tint);
 
-// Starts preparing the maps of every body of the scene that has one, in the scene's order, on one
+// Starts preparing the maps of every body of the scene that has one, in the scene's order, and
+// the Milky Way's (passes/milky_way_pass, untinted) on one
 // worker thread; each prepared map is held until it is taken. The returned thread must be joined;
 // it ends when every map is prepared.
 std::thread prefetch_body_maps(const SceneConfig& scene);

@@ -84,12 +84,13 @@ glm::mat3 BodyPass::channel_to_body(const ChannelView& view, const BodyState& st
 
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
                     const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
-                    const SkyInFrontSource* sky, double light_scale, bool antialias_limb) {
+                    const SkyInFrontSource* sky, const PlanetLight& light) {
     const auto tex = textures_.find(body.id);
     if (tex == textures_.end()) return;
     const glm::dvec3 to_sun = sun.position_m - state.position_m;  // double, world frame
     const double d_sun = glm::length(to_sun);
     const glm::dvec3 sun_dir = d_sun > 0.0 ? view.world_to_channel * (to_sun / d_sun) : glm::dvec3(0.0);
+    const double light_scale = light.disc_scale * light.disc_weight;
     const double lit = light_scale * body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
 
     const bool shadowed = casters.count > 0 && !body.atmosphere.present, oblate = body.flattening > 0.0;
@@ -100,7 +101,11 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));
     program.set("u_reflectance", glm::vec3(body.tint) * static_cast<float>(body.albedo));
     program.set("u_texture", 0);
-    program.set("u_limb_aa", antialias_limb ? 1 : 0);
+    program.set("u_limb_aa", light.small_disc ? 1 : 0);
+    program.set("u_limb_weight", static_cast<float>(light.limb_weight));
+    program.set("u_shine_dir", glm::vec3(view.world_to_channel * light.shine_dir));
+    program.set("u_shine_lit", glm::vec3(glm::dvec3(body.tint) * light.shine_lit * light.disc_weight));
+    program.set("u_shine_limb_weight", static_cast<float>(light.shine_limb_weight));
     // The map's texels one pixel spans at the disc's centre: a small disc samples a coarser level.
     // A body with an atmosphere reads level 0, as the atmosphere's look-up does when it draws the
     // same surface (the two must agree).

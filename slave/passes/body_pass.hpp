@@ -30,12 +30,13 @@ public:
     // casters: the body's eclipse shadows this frame, in the channel frame (count 0: none).
     // sky: the frame's sky was drawn first; the body replaces it, composed with the air in front
     // of it (beyond_the_air.hpp), and writes no geometry (the bound framebuffer is the colour alone).
-    // light_scale multiplies the disc's radiance (PlanetLight: the phase curve and the point-to-
-    // disc weight). antialias_limb (a small disc, PlanetLight::small_disc): the colour is blended
-    // by the limb's coverage of each pixel, and a limb pixel shaded inside the limb.
+    // light: the disc's radiance is scaled by its phase curve and point-to-disc weight
+    // (disc_scale x disc_weight), its surface reflects with its limb_weight and is lit by its
+    // planetshine. A small disc (PlanetLight::small_disc) has the colour blended by the limb's
+    // coverage of each pixel, and a limb pixel shaded inside the limb.
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
-              const SkyInFrontSource* sky = nullptr, double light_scale = 1.0, bool antialias_limb = false);
+              const SkyInFrontSource* sky = nullptr, const PlanetLight& light = PlanetLight{});
     // The mean linear colour of a body's map over its sphere, tint included (body_map_mean_rgb);
     // black for a body without one.
     glm::dvec3 map_mean_rgb(uint16_t body_id) const;

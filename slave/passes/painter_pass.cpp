@@ -26,7 +26,7 @@ void PainterPass::draw(const PassInputs&, int) {
             sun_.draw(f.view, *it.body, it.sphere, sky);
         else if (!atmosphere_ || !atmosphere_->draws_surface(f, it))
             bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id), sky,
-                         it.light.disc_scale * it.light.disc_weight, it.light.small_disc);
+                         it.light);
     }
 }
 

@@ -4,6 +4,8 @@
 // cluster-wide constants (the star PSF's angle, the cluster's coarsest pixel), so every channel
 // draws a body alike.
 //
+// The surface: Lambertian, or lunar-Lambert (BodyConfig::photometry; the Moon), whose phase
+// function is the measured curve over the model's disc integral.
 // The light: for a planet with a measured phase curve (scene/planet_magnitude, Mallama & Hilton
 // 2018) its V magnitude, as a flux in scene units: the Sun's irradiance at 1 AU times
 // 10^(-0.4 (V - V_sun)). Otherwise what the drawn disc gives: a Lambert sphere of albedo times its
@@ -39,6 +41,14 @@ struct PlanetLight {
     // Small enough on every channel (below 8 x handover_start) for body.frag to antialias its limb
     // and shade a limb pixel inside it; a large disc keeps the exact per-pixel hit.
     bool small_disc = false;
+    // The surface's lunar-Lambert weight L at this phase (0: Lambert; shared/surface_photometry.glsl).
+    double limb_weight = 0.0;
+    // Light from the body a moon circles (earthshine): its irradiance here times albedo / pi, the
+    // phase function at the shine's own phase angle and the source's colour (body.frag u_shine_lit,
+    // times the map); zero without one. Its direction (world, unit) and its L.
+    glm::dvec3 shine_lit{0.0};
+    glm::dvec3 shine_dir{0.0};
+    double shine_limb_weight = 0.0;
     bool has_point() const { return disc_weight < 1.0 && flux > 0.0; }
     // What the point carries: (1 - disc weight) of the light, in the map's colour.
     glm::dvec3 point_color() const { return flux * (1.0 - disc_weight) * unit_color; }
@@ -53,6 +63,13 @@ struct LuminanceGrid {
     std::vector<float> cells;  // kWidth * kHeight; empty: a uniform map
 };
 
+// A body that lights another with the sunlight it reflects (the Earth on the Moon).
+struct PlanetShine {
+    glm::dvec3 position_m{0.0};
+    double irradiance = 0.0;     // scene units, at the lit body
+    glm::dvec3 unit_color{1.0};  // its light's colour at unit luminance
+};
+
 struct PlanetLightInputs {
     glm::dvec3 sun_position_m{0.0};
     double sun_irradiance_1au = 0.0;  // scene units; 0: no Sun (no light)
@@ -61,9 +78,20 @@ struct PlanetLightInputs {
     const LuminanceGrid* map_grid = nullptr;  // its luminance by cell (tint included); null: uniform
     double psf_sigma_rad = 0.0;
     double handover_start_rad = 0.0;
+    const PlanetShine* shine = nullptr;  // none: no planetshine
 };
 
 PlanetLight planet_light(const BodyConfig& body, const BodyState& state, const PlanetLightInputs& in);
+
+// The irradiance at `lit_position_m` from `source` reflecting sunlight: its V magnitude from its
+// phase curve seen from there when it has one (the Earth: Mallama & Hilton 2018), else a Lambert
+// sphere of its albedo times its map's mean luminance. Both treat the source as a point: nearer
+// than kPlanetshineMinRadii of its radii (its disc wider than 11 degrees; a boulder on the ground,
+// or Io over Jupiter) that no longer holds, and this gives 0.
+constexpr double kPlanetshineMinRadii = 10.0;
+double planetshine_irradiance(const BodyConfig& source, const BodyState& source_state, double map_mean_luminance,
+                              const glm::dvec3& lit_position_m, const glm::dvec3& sun_position_m,
+                              double sun_irradiance_1au);
 
 // The grid of an image of width x height linear RGB (body_texture's BodyImage layout), times tint.
 LuminanceGrid luminance_grid(int width, int height, const std::vector<float>& rgb, const glm::dvec3& tint);
@@ -71,7 +99,12 @@ LuminanceGrid luminance_grid(int width, int height, const std::vector<float>& rg
 // How the lit, visible part of the map compares with a uniform map of its mean: the sum over the
 // grid of luminance x cos i x cos e, over the same sum with every cell at the mean (1 without a grid).
 double lit_map_ratio(const LuminanceGrid* grid, double mean_luminance, const glm::dvec3& to_sun_body,
-                     const glm::dvec3& to_camera_body);
+                     const glm::dvec3& to_camera_body, double limb_weight = 0.0);
+
+// A uniform sphere's disc-integrated light in the lunar-Lambert model, over its light at full phase
+// as a Lambert sphere (2/3): L Phi_LS(a) + 2/3 (1 - L) Phi_L(a), with the Lommel-Seeliger and
+// Lambert phase functions (scene/planet_magnitude). L = 0: 2/3 Phi_L.
+double lunar_lambert_disc_integral(double phase_rad, double limb_weight);
 
 // max(2 sigma, 4 pixels of the cluster's coarsest channel).
 double point_to_disc_start_rad(double psf_sigma_rad, double coarsest_pixel_rad);
