@@ -147,6 +147,13 @@ def generate():
 
 
 def main():
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        print(__doc__)
+        return 0
+    unknown = [a for a in sys.argv[1:] if a != "--check"]
+    if unknown:
+        print(f"tools/config_docs.py: unknown argument {unknown[0]!r} (only --check)", file=sys.stderr)
+        return 2
     text = generate()
     if "--check" in sys.argv[1:]:
         current = OUTPUT.read_text() if OUTPUT.exists() else ""
