@@ -13,24 +13,43 @@ void check_size(int width, int height) {
         throw std::runtime_error("texture size " + std::to_string(width) + "x" + std::to_string(height) +
                                  " is not positive");
 }
+
+// The first channel of each texel of an RGB image.
+std::vector<float> red_of(const std::vector<float>& rgb) {
+    std::vector<float> red(rgb.size() / 3);
+    for (size_t i = 0; i < red.size(); ++i) red[i] = rgb[3 * i];
+    return red;
+}
+
+void upload_level(GLuint id, int level, int width, int height, const std::vector<float>& rgb, bool grey) {
+    if (grey)
+        glTextureSubImage2D(id, level, 0, 0, width, height, GL_RED, GL_FLOAT, red_of(rgb).data());
+    else
+        glTextureSubImage2D(id, level, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
+}
 }  // namespace
 
-GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips)
+GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips,
+                     Channels channels)
     : width_(width), height_(height) {
     check_size(width, height);
     glCreateTextures(GL_TEXTURE_2D, 1, &id_);
     int levels = 1;
     while ((std::max(width, height) >> levels) > 0) ++levels;
-    glTextureStorage2D(id_, levels, GL_RGB16F, width, height);
+    const bool grey = channels == Channels::Grey;
+    glTextureStorage2D(id_, levels, grey ? GL_R16F : GL_RGB16F, width, height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(id_, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
+    upload_level(id_, 0, width, height, rgb, grey);
     if (static_cast<int>(mips.size()) != levels - 1)
         throw std::invalid_argument("texture " + std::to_string(width) + "x" + std::to_string(height) + ": " +
                                     std::to_string(mips.size()) + " mipmap levels given, " +
                                     std::to_string(levels - 1) + " needed");
     for (size_t i = 0; i < mips.size(); ++i)
-        glTextureSubImage2D(id_, static_cast<GLint>(i + 1), 0, 0, mips[i].width, mips[i].height, GL_RGB, GL_FLOAT,
-                            mips[i].rgb.data());
+        upload_level(id_, static_cast<GLint>(i + 1), mips[i].width, mips[i].height, mips[i].rgb, grey);
+    if (grey) {
+        glTextureParameteri(id_, GL_TEXTURE_SWIZZLE_G, GL_RED);
+        glTextureParameteri(id_, GL_TEXTURE_SWIZZLE_B, GL_RED);
+    }
     glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_REPEAT);

@@ -18,7 +18,11 @@ class GlTexture {
 public:
     // rgb: width*height*3 linear floats, row 0 first (texture coordinate t = 0); mips: its levels
     // 1.. as box_filter_mip_chain makes them (std::invalid_argument when the count is wrong).
-    GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips);
+    // Grey: a map whose three channels are equal is kept in one (R16F, read back as r = g = b):
+    // a third of the memory, and of the bytes each fetch reads.
+    enum class Channels { Rgb, Grey };
+    GlTexture(int width, int height, const std::vector<float>& rgb, const std::vector<MipLevel>& mips,
+              Channels channels = Channels::Rgb);
     // RGBA32F; rgba: width*height texels, row 0 first, or nullptr for an uninitialised render target.
     GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter);
     ~GlTexture();

@@ -29,6 +29,12 @@ double brightest_percentile(const BodyImage& image) {
     return *at;
 }
 
+bool is_grey(const BodyImage& image) {
+    for (size_t i = 0; i + 2 < image.rgb.size(); i += 3)
+        if (image.rgb[i] != image.rgb[i + 1] || image.rgb[i] != image.rgb[i + 2]) return false;
+    return true;
+}
+
 double brightest_texel(const BodyImage& image) {
     float peak = 0.0f;
     for (float v : image.rgb) peak = std::max(peak, v);
@@ -87,7 +93,11 @@ MilkyWayPass::MilkyWayPass(const MilkyWayConfig& config, double zero_mag_flux, d
                                                             : std::numbers::pi * map.image.height / map.image.width;
     const double texels = coarsest_pixel_rad * map.image.width / (2.0 * std::numbers::pi);
     map_lod_ = std::max(0.0, std::log2(std::max(texels, 1e-30)));
-    map_ = std::make_unique<GlTexture>(map.image.width, map.image.height, map.image.rgb, map.mips);
+    map_ = std::make_unique<GlTexture>(map.image.width, map.image.height, map.image.rgb, map.mips,
+                                       is_grey(map.image) ? GlTexture::Channels::Grey : GlTexture::Channels::Rgb);
+    // One level: the level is one for the whole cluster and never changes, so nothing blends
+    // between two (half the texel fetches).
+    glTextureParameteri(map_->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     ribbon_.upload(band_ribbon(latitude_extent_rad_));
 }
 
