@@ -45,15 +45,19 @@ double brightest_texel(const BodyImage& image) {
 
 glm::dmat3 MilkyWayPass::world_to_galactic() {
     // Columns of galactic -> ICRS are the galactic axes in the ICRS; the inverse is the transpose.
-    glm::dmat3 to_world(1.0);
-    const double axes[3][2] = {{0.0, 0.0}, {std::numbers::pi / 2.0, 0.0}, {0.0, std::numbers::pi / 2.0}};
-    for (int k = 0; k < 3; ++k) {
-        double ra = 0.0, dec = 0.0, p[3];
-        eraG2icrs(axes[k][0], axes[k][1], &ra, &dec);
-        eraS2c(ra, dec, p);
-        to_world[k] = glm::dvec3(p[0], p[1], p[2]);
-    }
-    return glm::transpose(to_world);
+    // A constant of the frame: worked out once, not for every frame and channel.
+    static const glm::dmat3 rotation = [] {
+        glm::dmat3 to_world(1.0);
+        const double axes[3][2] = {{0.0, 0.0}, {std::numbers::pi / 2.0, 0.0}, {0.0, std::numbers::pi / 2.0}};
+        for (int k = 0; k < 3; ++k) {
+            double ra = 0.0, dec = 0.0, p[3];
+            eraG2icrs(axes[k][0], axes[k][1], &ra, &dec);
+            eraS2c(ra, dec, p);
+            to_world[k] = glm::dvec3(p[0], p[1], p[2]);
+        }
+        return glm::transpose(to_world);
+    }();
+    return rotation;
 }
 
 // The band |b| <= extent (plus a margin the fragment shader trims) as triangles on the unit sphere,

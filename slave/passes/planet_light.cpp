@@ -59,13 +59,19 @@ double model_disc_flux(const BodyConfig& b, const BodyState& s, const PlanetGeom
            lunar_lambert_disc_integral(phase, limb_weight) * area;
 }
 
-// The measured phase curve's light at the camera, if the body has one, for the body's own size.
-std::optional<double> curve_flux(const BodyConfig& b, const PlanetGeometry& g, const PlanetLightInputs& in) {
+// The irradiance a body's measured phase curve gives at its observer (g), if it has one, for the
+// body's own size: the curve's magnitude, a flux relative to the Sun's at 1 AU.
+std::optional<double> curve_irradiance(const BodyConfig& b, const PlanetGeometry& g, double sun_irradiance_1au) {
     const PhaseCurve* curve = find_phase_curve(b.ephemeris);
     if (!curve) return std::nullopt;
     const double size = b.radius_m / curve->radius_m;
-    return size * size * in.sun_irradiance_1au *
+    return size * size * sun_irradiance_1au *
            std::pow(10.0, -0.4 * (*planet_magnitude_v(b.ephemeris, g) - kSunMagnitudeV));
+}
+
+// The measured phase curve's light at the camera, if the body has one.
+std::optional<double> curve_flux(const BodyConfig& b, const PlanetGeometry& g, const PlanetLightInputs& in) {
+    return curve_irradiance(b, g, in.sun_irradiance_1au);
 }
 
 // The measured curve over the drawn model's light: what scales the disc's radiance. Past the
@@ -160,11 +166,7 @@ double planetshine_irradiance(const BodyConfig& source, const BodyState& source_
     if (sun_irradiance_1au <= 0.0 ||
         g.observer_distance_au * kAstronomicalUnit_m < kPlanetshineMinRadii * source.radius_m)
         return 0.0;
-    if (const PhaseCurve* curve = find_phase_curve(source.ephemeris)) {
-        const double size = source.radius_m / curve->radius_m;
-        return size * size * sun_irradiance_1au *
-               std::pow(10.0, -0.4 * (*planet_magnitude_v(source.ephemeris, g) - kSunMagnitudeV));
-    }
+    if (const auto curve = curve_irradiance(source, g, sun_irradiance_1au)) return *curve;
     const double ratio = source.radius_m / (g.observer_distance_au * kAstronomicalUnit_m);
     return 2.0 / 3.0 * source.albedo * map_mean_luminance * sun_irradiance_1au /
            (g.sun_distance_au * g.sun_distance_au) * ratio * ratio * lambert_phase(glm::radians(g.phase_deg));
