@@ -7,7 +7,9 @@
 //   orbit   from 400 km, the limb of the Earth across the channel, the Moon above it;
 //   night   (asked for by --views) from the ground, the Sun 30 degrees down, looking east; the
 //           scene's bodies other than the Sun, the Earth and the Moon 4 AU away across the view
-//           (with --scene configs/scenes/solar-system.json: nine planet points).
+//           (with --scene configs/scenes/solar-system.json: nine planet points);
+//   saturn  (asked for by --views, with the solar-system scene) as night, with Saturn and its rings
+//           8 Saturn radii ahead, lit from behind the camera.
 // The snapshot is finished the way the master does it (finish_frame_snapshot: automatic
 // exposure, glare sources). In the same process and rounds, a trivial full-screen pass (one
 // texel fetched per pixel into an RGBA16F target of the channel's size) is timed, and every cost
@@ -96,6 +98,8 @@ const std::vector<ViewSpec>& all_views() {
         // Night: the Sun 30 degrees down; the scene's other bodies (solar-system.json's planets)
         // 4 AU away across the view, each a point (planet_point_pass).
         {"night", 2.0, 100.0, 20.0, 280.0, -30.0, 250.0, -10.0},
+        // As night, with the scene's Saturn 8 of its radii ahead (its rings 32 degrees each way).
+        {"saturn", 2.0, 100.0, 20.0, 280.0, -30.0, 250.0, -10.0},
     };
     return v;
 }
@@ -130,6 +134,11 @@ Snapshot view_snapshot(const ViewSpec& v, const SceneConfig& scene, const Cluste
     const glm::dvec3 forward = local_direction(v.look_az_deg, v.look_el_deg);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, up));
     s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(right, forward), -forward));
+    if (v.name == "saturn") {
+        const BodyConfig* saturn = scene.find("saturn");
+        if (!saturn) throw std::runtime_error("the saturn view needs a scene with saturn (solar-system.json)");
+        s.bodies[saturn->id].position_m = s.camera_position_m + 8.0 * saturn->radius_m * forward;
+    }
     s.sim_time_s = 0.0;
     finish_frame_snapshot(s, ShowSettings{}, cluster, scene, 1, kFrameInterval_s, &exposure, glare);
     return s;
@@ -355,7 +364,7 @@ void write_view_image(const std::string& dir, const ViewSpec& v, SceneRenderer& 
 const ViewSpec& find_view(const std::string& name) {
     for (const auto& v : all_views())
         if (v.name == name) return v;
-    throw std::runtime_error("no view named \"" + name + "\" (day, sunset, orbit, night)");
+    throw std::runtime_error("no view named \"" + name + "\" (day, sunset, orbit, night, saturn)");
 }
 
 int run(const Options& o) {
@@ -419,7 +428,7 @@ int main(int argc, char** argv) {
     app.add_option("--model", o.model, "atmosphere quality level (default: the scene's)");
     app.add_option("--scene", o.scene_file, "scene file (bodies named sun, earth and moon)")->check(CLI::ExistingFile);
     app.add_flag("--read-back", o.read_back, "also read every frame back as RGBA32F (what a files sink needs)");
-    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night")->delimiter(',');
+    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night, saturn")->delimiter(',');
     app.add_option("--device", o.device, "EGL device index (-1: the first that works, else surfaceless)");
     app.add_option("--images", o.images, "also write DIR/frame-cost-<view>.png")->check(CLI::ExistingDirectory);
     if (auto rc = parse_command_line(app, argc, argv, "frame_cost")) return *rc;

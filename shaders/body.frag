@@ -4,6 +4,7 @@
 // (Lambert or lunar-Lambert, shared/surface_photometry.glsl) and by the body it circles
 // (earthshine). Also writes the deferred geometry the atmosphere pass reads: diffuse reflectance (linear) and the hit distance in metres, and a
 // logarithmic depth of that distance for the glare probe's occlusion queries.
+// BODY_RINGS: a ringed planet, darkened where its rings shade it from the Sun (ring_shadow).
 // Eclipse shadows: the sunlight at the surface point (normal * radius, relative to the centre,
 // like the casters in u_ecl) is scaled by eclipse_light (shaders/shared/eclipse_casters.glsl),
 // only in the BODY_ECLIPSE variant (slave/passes/body_pass.cpp): on a CPU rasteriser a branch
@@ -33,6 +34,11 @@ uniform float u_map_lod;         // the map level a pixel spans at the disc's ce
 uniform EclipseCasters u_ecl;    // channel frame, metres from the body's centre
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
+#if BODY_RINGS
+uniform vec3 u_ring_normal;        // unit, channel frame: the planet's pole
+uniform sampler2D u_ring_profile;  // the rings' normal optical depth by radius (passes/ring_profile)
+uniform vec2 u_ring_profile_map;   // s = r * x + y, r in planet radii
+#endif
 #if BODY_AFTER_SKY
 uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
 uniform SkyInFront u_sky;
@@ -60,6 +66,21 @@ vec4 through_the_air(vec3 v, vec3 radiance) {
     vec3 c = radiance * vec3(textureLod(u_sky_third, uv, 0.0)) + max(inscatter, vec3(0.0)) * u_sky.solar_scale;
     if (u_halo_on != 0) c += textureLod(u_halo, gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw, 0.0).rgb;
     return vec4(c, 1.0);
+}
+#endif
+
+#if BODY_RINGS
+// The sunlight the rings let through to a point of the surface (planet radii from the centre):
+// where the ray to the Sun crosses the ring plane, the slab's transmission along it. The Sun's
+// own size is left out: at Saturn it blurs a ring edge's shadow by under 60 km, a third of a texel
+// of the ring map.
+float ring_shadow(vec3 surface, vec3 sun) {
+    float t = ring_plane_hit(surface, sun, u_ring_normal);
+    if (t <= 0.0) return 1.0;
+    float s = length(surface + t * sun) * u_ring_profile_map.x + u_ring_profile_map.y;
+    if (s < 0.0 || s > 1.0) return 1.0;
+    float tau = textureLod(u_ring_profile, vec2(s, 0.5), 0.0).r;
+    return ring_transmission(tau, abs(dot(sun, u_ring_normal)));
 }
 #endif
 
@@ -109,6 +130,9 @@ void main() {
     if (u_ecl.count > 0 && cos_i > 0.0) {
         light = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, surface * u_distances_m.y);
     }
+#endif
+#if BODY_RINGS
+    if (cos_i > 0.0) light *= ring_shadow(surface, u_sun_dir);
 #endif
     vec3 shine = u_shine_lit * lunar_lambert(dot(n, u_shine_dir), cos_e, u_shine_limb_weight);
     vec3 radiance = (u_lit * sunlit * light + shine) * albedo_map;

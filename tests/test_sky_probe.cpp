@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -90,7 +91,7 @@ TEST(SkyProbe, AnswersForEveryBodyOfTheSolarSystemScene) {
         bodies.push_back(b["ephemeris"]);
         queries += "position " + bodies.back() + " 2026-12-03T20:00:00Z\\n";
     }
-    ASSERT_EQ(bodies.size(), 10u);
+    ASSERT_EQ(bodies.size(), 14u);
     const auto [status, out] = run("printf '" + queries + "' | " + kSky);
     ASSERT_EQ(status, 0) << out;
     const auto j = json_lines(out);
@@ -102,4 +103,15 @@ TEST(SkyProbe, AnswersForEveryBodyOfTheSolarSystemScene) {
     }
     // Pluto in late 2026 is in Capricornus/Aquarius, about 38 AU away.
     EXPECT_NEAR(j[9]["distance_km"].get<double>() / 1.495978707e8, 35.9, 1.5) << j[9];
+    // Jupiter's moons (the last four) stand within 0.2 degrees of it (Callisto reaches 0.17 at
+    // opposition) and within 0.02 AU of its distance.
+    const auto& jupiter = j[5];
+    for (size_t i = 10; i < 14; ++i) {
+        const double d_ra = std::remainder(j[i]["ra_deg"].get<double>() - jupiter["ra_deg"].get<double>(), 360.0);
+        const double d_dec = j[i]["dec_deg"].get<double>() - jupiter["dec_deg"].get<double>();
+        const double cos_dec = std::cos(jupiter["dec_deg"].get<double>() * 3.14159265358979 / 180.0);
+        EXPECT_LT(std::hypot(d_ra * cos_dec, d_dec), 0.2) << bodies[i];
+        EXPECT_NEAR(j[i]["distance_km"].get<double>(), jupiter["distance_km"].get<double>(), 0.02 * 1.495978707e8)
+            << bodies[i];
+    }
 }

@@ -3,7 +3,8 @@
 
 Usage: python3 tools/make_ephemeris_reference.py data/ephemeris/pyephem_reference.csv \
                                                  data/ephemeris/pyephem_orientation.csv \
-                                                 data/ephemeris/pyephem_topocentric.csv
+                                                 data/ephemeris/pyephem_topocentric.csv \
+                                                 data/ephemeris/pyephem_galilean.csv
 
 Source: PyEphem (Debian package python3-ephem, 4.1.4), whose libastro computes the planets from its
 own truncated VSOP87 code, the Moon from its own ELP 2000-82 code and Pluto from its own series,
@@ -24,6 +25,13 @@ The third holds the Moon seen from three places on the ground on 12 instants eac
 apparent geocentric place (g_ra, g_dec), both for the equator and equinox of date. Their difference
 is the topocentric parallax the test checks.
 Columns: lat_deg,lon_deg,alt_m,utc,topo_ra_deg,topo_dec_deg,geo_ra_deg,geo_dec_deg.
+
+The fourth holds the Galilean moons' places relative to Jupiter's, on 30 instants each (seed 29,
+1950-2050 TT): libastro's own theory of the moons (after Meeus 1998 ch. 44), as its x and y (the
+offset on the sky in Jupiter's equatorial radii, x east, y south) times Jupiter's angular radius:
+east_arcsec and north_arcsec. (PyEphem's own ra of a moon is Jupiter's plus x times the radius,
+without the 1 / cos dec that turns an offset east into one in right ascension, so it is not used.)
+Columns: moon,tt_jd,east_arcsec,north_arcsec.
 """
 import datetime
 import math
@@ -82,8 +90,26 @@ def topocentric_rows():
     return rows
 
 
+GALILEAN = [("io", ephem.Io), ("europa", ephem.Europa), ("ganymede", ephem.Ganymede),
+            ("callisto", ephem.Callisto)]
+
+
+def galilean_rows():
+    rng = random.Random(29)
+    j1950, j2050 = 2433282.5, 2469807.5
+    rows = ["moon,tt_jd,east_arcsec,north_arcsec"]
+    for name, make in GALILEAN:
+        for _ in range(30):
+            tt_jd = round(j1950 + (j2050 - j1950) * rng.random(), 6)
+            date = ut_date_for_tt(tt_jd)
+            m, j = make(date), ephem.Jupiter(date)
+            radius_arcsec = math.degrees(j.radius) * 3600.0
+            rows.append(f"{name},{tt_jd:.6f},{m.x * radius_arcsec:.4f},{-m.y * radius_arcsec:.4f}")
+    return rows
+
+
 def main():
-    if len(sys.argv) != 4:
+    if len(sys.argv) != 5:
         raise SystemExit(__doc__)
     rng = random.Random(18)
     j1900, j2100 = 2415020.5, 2488069.5
@@ -99,6 +125,8 @@ def main():
         f.write("\n".join(orientation_rows()) + "\n")
     with open(sys.argv[3], "w") as f:
         f.write("\n".join(topocentric_rows()) + "\n")
+    with open(sys.argv[4], "w") as f:
+        f.write("\n".join(galilean_rows()) + "\n")
 
 
 if __name__ == "__main__":

@@ -135,6 +135,30 @@ std::string read_texture(const JsonReader& b, const std::string& dir, const std:
     return path;
 }
 
+// A required "texture": an image path, resolved against the scene's folder, that must exist.
+std::string read_existing_image(const JsonReader& r, const std::string& dir) {
+    const std::string path = resolve_path(dir, r.string("texture"));
+    if (!fs::is_regular_file(path))
+        r.fail("texture", "image \"" + path + "\" does not exist (install it with scripts/setup.sh)");
+    return path;
+}
+
+RingConfig read_rings(const JsonReader& r, const std::string& dir, const BodyConfig& body) {
+    RingConfig c;
+    c.present = true;
+    c.texture = read_existing_image(r, dir);
+    c.inner_radius_m = r.declared_number("inner_radius_m");
+    c.outer_radius_m = r.declared_number("outer_radius_m");
+    if (c.inner_radius_m <= body.radius_m)
+        r.fail("inner_radius_m", "must be larger than the planet's radius (" + std::to_string(body.radius_m) + " m)");
+    if (c.outer_radius_m <= c.inner_radius_m) r.fail("outer_radius_m", "must be larger than inner_radius_m");
+    c.optical_depth = r.declared_number("optical_depth");
+    c.phase_albedo = r.declared_number("phase_albedo");
+    if (auto t = r.optional_dvec3("tint")) c.tint = glm::vec3(*t);
+    r.reject_unknown_keys();
+    return c;
+}
+
 BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, std::set<std::string>& names) {
     BodyConfig c;
     c.id = id;
@@ -167,6 +191,11 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
         if (c.flattening > 0.0)
             b.fail("flattening", "a body with an atmosphere is drawn as a sphere (its air is a spherical shell)");
     }
+    if (auto r = b.optional_child("rings")) {
+        if (c.kind != BodyKind::Planet) r->fail("texture", "only a planet has rings");
+        if (c.atmosphere.present) r->fail("texture", "a planet with an atmosphere cannot have rings yet");
+        c.rings = read_rings(*r, dir, c);
+    }
     b.reject_unknown_keys();
     return c;
 }
@@ -174,9 +203,7 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
 MilkyWayConfig read_milky_way(const JsonReader& m, const std::string& dir) {
     MilkyWayConfig c;
     c.present = true;
-    c.texture = resolve_path(dir, m.string("texture"));
-    if (!fs::is_regular_file(c.texture))
-        m.fail("texture", "image \"" + c.texture + "\" does not exist (install it with scripts/setup.sh)");
+    c.texture = read_existing_image(m, dir);
     c.surface_brightness = m.declared_number("surface_brightness");
     c.latitude_extent_deg = m.declared_number("latitude_extent_deg");
     m.reject_unknown_keys();

@@ -27,11 +27,23 @@ struct AtmosphereConfig {
     atmosphere::AtmosphereParameters parameters;
 };
 
+// A planet's rings: a thin slab in its equatorial plane (shaders/shared/ring_photometry.glsl), whose
+// normal optical depth follows a radial map: tau = optical_depth x (the map's linear value)^2.
+struct RingConfig {
+    bool present = false;
+    std::string texture;  // resolved image path; its columns run from the inner radius to the outer
+    double inner_radius_m = 0.0, outer_radius_m = 0.0;  // what the map's first and last columns span
+    double optical_depth = 4.0;                         // tau where the map reads 1
+    double phase_albedo = 1.0;                          // varpi0 P where the map reads 1 (it scales with the map)
+    glm::vec3 tint{1.0f};
+};
+
 struct BodyConfig {
     uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
     BodyKind kind = BodyKind::Planet;
-    std::string ephemeris;    // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto"
+    std::string
+        ephemeris;  // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto", "io" ... "callisto"
     double radius_m = 1.0;    // equatorial radius (the mean one for a sphere)
     double flattening = 0.0;  // (a - c) / a: the polar radius is radius_m * (1 - flattening)
     std::string texture;      // resolved image path, or "generated:<name>"
@@ -47,6 +59,7 @@ struct BodyConfig {
     std::optional<glm::vec3> umbra_light;
     double umbra_brightness = 2.5e-4;
     double corona = 1.0;  // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
+    RingConfig rings;     // planets
 };
 
 // Which bodies shadow which (Ekelin & Fernqvist 2009, section 3.3.3): in a group the parent shadows its

@@ -1,6 +1,7 @@
 #pragma once
-// Orientation of the Sun, the planets, Pluto and the Moon from the IAU Working Group on Cartographic
-// Coordinates and Rotational Elements: Archinal et al. 2018 (the 2015 report), Tables 1 and 2; the
+// Orientation of the Sun, the planets, Pluto, the Galilean moons and the Moon from the IAU Working
+// Group on Cartographic Coordinates and Rotational Elements: Archinal et al. 2018 (the 2015 report),
+// Tables 1 and 2 (the Galilean moons with Jupiter's J3 .. J7 terms for Io and Europa); the
 // Moon from Archinal et al. 2011 (the 2009 report, Table 2, not revised in 2015). For each body,
 // the north pole (alpha0, delta0) in ICRF and the prime meridian angle W, measured eastward along
 // the body's equator from the node Q where it crosses the ICRF equator:
@@ -24,7 +25,8 @@ struct RotationElements {
     double prime_meridian_deg = 0.0;
 };
 
-// Whether iau_rotation_elements knows the body ("sun", "mercury" ... "neptune", "pluto", "moon").
+// Whether iau_rotation_elements knows the body ("sun", "mercury" ... "neptune", "pluto", "moon", "io",
+// "europa", "ganymede", "callisto").
 bool has_iau_rotation(const std::string& body);
 
 // The elements at t_tdb_s seconds from J2000 (TT may stand for TDB). The caller applies the light

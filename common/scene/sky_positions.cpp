@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "scene/planet_series.hpp"
+#include "scene/satellite_orbits.hpp"
 #include "scene/sim_time.hpp"
 
 namespace cupola {
@@ -37,8 +38,15 @@ int body_index(const std::string& name) {
     throw std::invalid_argument("unknown body '" + name + "' (one of: " + list + ")");
 }
 
-// Barycentric position (AU) of the Sun or a planet at day offset d.
+constexpr int kFirstSatellite = 10;  // after the Sun, the Moon, the planets and Pluto
+
+// Barycentric position (AU) of the Sun, a planet or a planet's moon at day offset d.
 glm::dvec3 barycentric_au(int index, double d) {
+    if (index >= kFirstSatellite) {
+        const std::string& name = sky_body_names()[static_cast<size_t>(index)];
+        return barycentric_au(body_index(satellite_parent(name)), d) +
+               satellite_offset_m(name, d) / kAstronomicalUnit_m;
+    }
     const EarthState e = earth_state(d);
     const glm::dvec3 sun = e.bary - e.helio;
     if (index == 0) return sun;
@@ -48,8 +56,12 @@ glm::dvec3 barycentric_au(int index, double d) {
 }  // namespace
 
 const std::vector<std::string>& sky_body_names() {
-    static const std::vector<std::string> names = {"sun",     "moon",   "mercury", "venus",   "mars",
-                                                   "jupiter", "saturn", "uranus",  "neptune", "pluto"};
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n = {"sun",     "moon",   "mercury", "venus",   "mars",
+                                      "jupiter", "saturn", "uranus",  "neptune", "pluto"};
+        for (const auto& moon : satellite_names()) n.push_back(moon);
+        return n;
+    }();
     return names;
 }
 

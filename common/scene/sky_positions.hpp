@@ -3,6 +3,7 @@
 //   Earth (heliocentric and barycentric)  ERFA eraEpv00  (vs DE405: a few km, Note in epv00.c)
 //   Moon (geocentric, geometric)          ERFA eraMoon98 (vs ELP/MPP02 1950-2100: RMS 2.9", worst 18.3")
 //   Mercury ... Neptune, Pluto            VSOP87 and Meeus ch. 37 through libnova (scene/planet_series)
+//   Io, Europa, Ganymede, Callisto        Jupiter + JPL's mean elements (scene/satellite_orbits)
 // Measured against an independent ephemeris over 1900-2100 in docs/ephemeris-accuracy.md.
 // "Apparent" = light-time corrected (the body where it was when the light left it), plus annual
 // aberration (eraAb, the Earth's barycentric velocity) for the Sun and the planets. For the Moon
@@ -28,7 +29,7 @@ struct SkyPosition {
 };
 
 // The body names understood below: sun, moon, mercury, venus, mars, jupiter, saturn, uranus, neptune,
-// pluto.
+// pluto, io, europa, ganymede, callisto.
 const std::vector<std::string>& sky_body_names();
 
 // The apparent geocentric vector alone (what searches need). Throws std::invalid_argument naming

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 #include <utility>
 
 #include "atmosphere/solar_scale.hpp"
@@ -16,20 +17,32 @@ double sun_irradiance(const SunLight& sun, double d_m) {
 }
 
 namespace {
-std::string body_defines(bool oblate, bool after_sky, bool shadowed) {
-    auto flag = [](const char* name, bool on) { return std::string("#define ") + name + (on ? " 1\n" : " 0\n"); };
-    return flag("BODY_ECLIPSE", shadowed) + flag("BODY_AFTER_SKY", after_sky) + flag("BODY_OBLATE", oblate);
+constexpr unsigned kOblate = 1, kAfterSky = 2, kShadowed = 4, kRings = 8;
+
+std::string body_defines(unsigned variant) {
+    auto flag = [&](const char* name, unsigned bit) {
+        return std::string("#define ") + name + ((variant & bit) ? " 1\n" : " 0\n");
+    };
+    return flag("BODY_ECLIPSE", kShadowed) + flag("BODY_AFTER_SKY", kAfterSky) + flag("BODY_OBLATE", kOblate) +
+           flag("BODY_RINGS", kRings);
+}
+
+// Every variant a body of the scene can need: shadowed or not, drawn after the sky or not, oblate
+// for a flattened body, with its rings' shadow for a ringed planet.
+std::set<unsigned> variants_needed(const SceneConfig& scene) {
+    std::set<unsigned> out;
+    for (const auto& b : scene.bodies) {
+        if (b.kind == BodyKind::Star) continue;
+        const unsigned shape = (b.flattening > 0.0 ? kOblate : 0u) | (b.rings.present ? kRings : 0u);
+        for (const unsigned v : {0u, kAfterSky, kShadowed, kAfterSky | kShadowed}) out.insert(shape | v);
+    }
+    return out;
 }
 }  // namespace
 
-BodyPass::BodyPass(const SceneConfig& scene) {
-    bool any_oblate = false;
-    for (const auto& b : scene.bodies) any_oblate = any_oblate || b.flattening > 0.0;
-    for (int oblate = 0; oblate < (any_oblate ? 2 : 1); ++oblate)
-        for (int after_sky = 0; after_sky < 2; ++after_sky)
-            for (int shadowed = 0; shadowed < 2; ++shadowed)
-                programs_[oblate][after_sky][shadowed] =
-                    std::make_unique<GlProgram>("sphere.vert", "body.frag", body_defines(oblate, after_sky, shadowed));
+BodyPass::BodyPass(const SceneConfig& scene) : rings_(scene) {
+    for (const unsigned v : variants_needed(scene))
+        programs_[v] = std::make_unique<GlProgram>("sphere.vert", "body.frag", body_defines(v));
     for (const auto& b : scene.bodies) {
         if (b.kind == BodyKind::Star) continue;
         BodyMap map = take_body_map(b.texture, glm::dvec3(b.tint));
@@ -49,18 +62,16 @@ glm::dvec3 BodyPass::map_mean_rgb(uint16_t body_id) const {
     return m == map_means_.end() ? glm::dvec3(0.0) : m->second;
 }
 
-const GlProgram& BodyPass::program(bool oblate, bool after_sky, bool shadowed) const {
-    return *programs_[oblate][after_sky][shadowed];
+const GlProgram& BodyPass::program(bool oblate, bool after_sky, bool shadowed, bool rings) const {
+    const unsigned v =
+        (oblate ? kOblate : 0u) | (after_sky ? kAfterSky : 0u) | (shadowed ? kShadowed : 0u) | (rings ? kRings : 0u);
+    return *programs_.at(v);
 }
 
 SphereView BodyPass::oblate_sphere(const GlProgram& program, const ChannelView& view, const BodyConfig& body,
                                    const BodyState& state, const SphereView& sphere) {
-    // u_to_sphere = B^T diag(1, 1, 1 / (1 - f)) B, B = channel -> body, all in double.
-    const glm::dmat3 b = glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world;
-    glm::dmat3 stretch(1.0), squeeze(1.0);
-    stretch[2][2] = 1.0 / (1.0 - body.flattening);
-    squeeze[2][2] = 1.0 - body.flattening;
-    const glm::dmat3 to_sphere = glm::transpose(b) * stretch * b, from_sphere = glm::transpose(b) * squeeze * b;
+    // u_to_sphere = B^T diag(1, 1, 1 / (1 - f)) B, B = channel -> body, all in double; its inverse.
+    const glm::dmat3 to_sphere = channel_to_stretched(view, body, state), from_sphere = glm::inverse(to_sphere);
     program.set("u_to_sphere", glm::mat3(to_sphere));
     program.set("u_from_sphere", glm::mat3(from_sphere));
     SphereView s = sphere;
@@ -94,8 +105,10 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     const double lit = light_scale * body.albedo / std::numbers::pi * sun_irradiance(sun, d_sun);
 
     const bool shadowed = casters.count > 0 && !body.atmosphere.present, oblate = body.flattening > 0.0;
-    const GlProgram& program = this->program(oblate, sky != nullptr, shadowed);
+    const bool rings = rings_.has_rings(body.id);
+    const GlProgram& program = this->program(oblate, sky != nullptr, shadowed, rings);
     program.use();
+    if (rings) rings_.set_shadow_uniforms(program, view, body, state);
     program.set("u_channel_to_body", channel_to_body(view, state));
     program.set("u_sun_dir", glm::vec3(sun_dir));
     program.set("u_lit", glm::vec3(body.tint) * static_cast<float>(lit));

@@ -16,6 +16,7 @@
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/frame_context.hpp"
 #include "passes/planet_light.hpp"
+#include "passes/ring_drawer.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "wire/snapshot.hpp"
 
@@ -37,6 +38,12 @@ public:
     void draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
               const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
               const SkyInFrontSource* sky = nullptr, const PlanetLight& light = PlanetLight{});
+    // A ringed planet's rings (ring_drawer.hpp), after the planet; nothing for a body without.
+    void draw_rings(const ChannelView& view, const FrameBody& body, const SunLight& sun,
+                    const SkyInFrontSource* sky) const {
+        rings_.draw(view, body, sun, sky);
+    }
+    const RingDrawer& rings() const { return rings_; }
     // The mean linear colour of a body's map over its sphere, tint included (body_map_mean_rgb);
     // black for a body without one.
     glm::dvec3 map_mean_rgb(uint16_t body_id) const;
@@ -48,12 +55,13 @@ public:
     static glm::mat3 channel_to_body(const ChannelView& view, const BodyState& state);
 
 private:
-    // programs_[oblate][after_sky][shadowed]: with eclipse shadows (a body without an atmosphere,
-    // in a shadow) and without (the atmosphere pass relights the surface of a body that has one,
-    // shadows included); drawn in the usual order or after the sky; a sphere or an oblate
-    // spheroid. The oblate ones are built only for a scene that has a flattened body.
-    std::unique_ptr<GlProgram> programs_[2][2][2];
-    const GlProgram& program(bool oblate, bool after_sky, bool shadowed) const;
+    // The body.frag variants the scene needs, by bits (body_pass.cpp, variants_needed): with
+    // eclipse shadows (a body without an atmosphere, in a shadow) and without (the atmosphere pass
+    // relights the surface of a body that has one, shadows included); drawn in the usual order or
+    // after the sky; a sphere or an oblate spheroid; with its rings' shadow.
+    std::map<unsigned, std::unique_ptr<GlProgram>> programs_;
+    const GlProgram& program(bool oblate, bool after_sky, bool shadowed, bool rings) const;
+    RingDrawer rings_;
     // Sets the stretched-sphere uniforms of an oblate body (body.frag, BODY_OBLATE) and returns the
     // sphere as that frame sees it (its cover unchanged).
     static SphereView oblate_sphere(const GlProgram& program, const ChannelView& view, const BodyConfig& body,

@@ -24,9 +24,11 @@ void PainterPass::draw(const PassInputs&, int) {
     for (const FrameBody& it : f.far_to_near) {
         if (it.body->kind == BodyKind::Star)
             sun_.draw(f.view, *it.body, it.sphere, sky);
-        else if (!atmosphere_ || !atmosphere_->draws_surface(f, it))
+        else if (!atmosphere_ || !atmosphere_->draws_surface(f, it)) {
             bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id), sky,
                          it.light);
+            bodies_.draw_rings(f.view, it, f.light, sky);
+        }
     }
 }
 

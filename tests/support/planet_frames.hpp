@@ -36,6 +36,24 @@ inline double frame_flux(const Image& img, const ChannelConfig& ch) {
     return sum;
 }
 
+// Two channels side by side against one wide channel of their combined width (the same height):
+// the largest difference of any colour component, and the wide frame's brightest component.
+struct SeamDifference {
+    double worst = 0.0, peak = 0.0;
+};
+inline SeamDifference seam_difference(const Image& left, const Image& right, const Image& wide) {
+    SeamDifference d;
+    for (int y = 0; y < wide.height; ++y)
+        for (int x = 0; x < wide.width; ++x) {
+            const float* narrow = x < left.width ? left.pixel(x, y) : right.pixel(x - left.width, y);
+            for (int k = 0; k < 3; ++k) {
+                d.worst = std::max(d.worst, double(std::abs(narrow[k] - wide.pixel(x, y)[k])));
+                d.peak = std::max(d.peak, double(wide.pixel(x, y)[k]));
+            }
+        }
+    return d;
+}
+
 // With CUPOLA_TEST_IMAGES=DIR, the frame goes to DIR/NAME/ as a PNG, scaled so that `peak` (its
 // brightest value when 0) reads 1.
 inline void maybe_write_frame(const std::string& name, Image img, float peak = 0.0f) {
