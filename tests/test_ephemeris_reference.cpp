@@ -14,6 +14,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,24 +35,26 @@ struct ReferencePlace {
     double tt_jd = 0.0, ra_deg = 0.0, dec_deg = 0.0;
 };
 
-std::vector<ReferencePlace> read_reference() {
-    std::istringstream in(test::read_text(test::source_path("data/ephemeris/pyephem_reference.csv")));
+// The rows of a reference file under data/ephemeris (its header line skipped), each split at its
+// commas into `columns` fields.
+std::vector<std::vector<std::string>> csv_rows(const std::string& file, size_t columns) {
+    std::istringstream in(test::read_text(test::source_path("data/ephemeris/" + file)));
     std::string line;
     std::getline(in, line);  // header
-    std::vector<ReferencePlace> rows;
+    std::vector<std::vector<std::string>> rows;
     while (std::getline(in, line)) {
         std::istringstream f(line);
-        ReferencePlace r;
-        std::string field;
-        std::getline(f, r.body, ',');
-        std::getline(f, field, ',');
-        r.tt_jd = std::stod(field);
-        std::getline(f, field, ',');
-        r.ra_deg = std::stod(field);
-        std::getline(f, field, ',');
-        r.dec_deg = std::stod(field);
-        rows.push_back(r);
+        std::vector<std::string> fields(columns);
+        for (auto& field : fields) std::getline(f, field, ',');
+        rows.push_back(std::move(fields));
     }
+    return rows;
+}
+
+std::vector<ReferencePlace> read_reference() {
+    std::vector<ReferencePlace> rows;
+    for (const auto& v : csv_rows("pyephem_reference.csv", 4))
+        rows.push_back({v[0], std::stod(v[1]), std::stod(v[2]), std::stod(v[3])});
     return rows;
 }
 
@@ -121,14 +125,8 @@ struct GroundSighting {
 };
 
 std::vector<GroundSighting> read_ground_sightings() {
-    std::istringstream in(test::read_text(test::source_path("data/ephemeris/pyephem_topocentric.csv")));
-    std::string line;
-    std::getline(in, line);  // header
     std::vector<GroundSighting> rows;
-    while (std::getline(in, line)) {
-        std::istringstream f(line);
-        std::string v[8];
-        for (auto& field : v) std::getline(f, field, ',');
+    for (const auto& v : csv_rows("pyephem_topocentric.csv", 8)) {
         GroundSighting g{std::stod(v[0]), std::stod(v[1]), std::stod(v[2]), v[3], {}, {}};
         g.topocentric = unit_from_ra_dec(std::stod(v[4]), std::stod(v[5]));
         g.geocentric = unit_from_ra_dec(std::stod(v[6]), std::stod(v[7]));
@@ -205,23 +203,9 @@ struct MoonOffset {
 };
 
 std::vector<MoonOffset> read_galilean() {
-    std::istringstream in(test::read_text(test::source_path("data/ephemeris/pyephem_galilean.csv")));
-    std::string line;
-    std::getline(in, line);  // header
     std::vector<MoonOffset> rows;
-    while (std::getline(in, line)) {
-        std::istringstream f(line);
-        MoonOffset r;
-        std::string field;
-        std::getline(f, r.moon, ',');
-        std::getline(f, field, ',');
-        r.tt_jd = std::stod(field);
-        std::getline(f, field, ',');
-        r.east_north_arcsec.x = std::stod(field);
-        std::getline(f, field, ',');
-        r.east_north_arcsec.y = std::stod(field);
-        rows.push_back(r);
-    }
+    for (const auto& v : csv_rows("pyephem_galilean.csv", 4))
+        rows.push_back({v[0], std::stod(v[1]), glm::dvec2(std::stod(v[2]), std::stod(v[3]))});
     return rows;
 }
 
