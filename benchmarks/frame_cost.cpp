@@ -9,7 +9,9 @@
 //           scene's bodies other than the Sun, the Earth and the Moon 4 AU away across the view
 //           (with --scene configs/scenes/solar-system.json: nine planet points);
 //   saturn  (asked for by --views, with the solar-system scene) as night, with Saturn and its rings
-//           8 Saturn radii ahead, lit from behind the camera.
+//           8 Saturn radii ahead, lit from behind the camera;
+//   moonlit (asked for by --views) as night, with the Moon nearly full 40 degrees up in the view:
+//           the air lit by the Moon too.
 // The snapshot is finished the way the master does it (finish_frame_snapshot: automatic
 // exposure, glare sources). In the same process and rounds, a trivial full-screen pass (one
 // texel fetched per pixel into an RGBA16F target of the channel's size) is timed, and every cost
@@ -100,6 +102,9 @@ const std::vector<ViewSpec>& all_views() {
         {"night", 2.0, 100.0, 20.0, 280.0, -30.0, 250.0, -10.0},
         // As night, with the scene's Saturn 8 of its radii ahead (its rings 32 degrees each way).
         {"saturn", 2.0, 100.0, 20.0, 280.0, -30.0, 250.0, -10.0},
+        // As night, with the Moon nearly full 40 degrees up in the view: the moonlit sky
+        // (common/atmosphere/moonlit_sky.hpp), its own sky-view table and a second look-up per pixel.
+        {"moonlit", 2.0, 100.0, 20.0, 280.0, -30.0, 100.0, 40.0},
     };
     return v;
 }
@@ -428,7 +433,7 @@ int main(int argc, char** argv) {
     app.add_option("--model", o.model, "atmosphere quality level (default: the scene's)");
     app.add_option("--scene", o.scene_file, "scene file (bodies named sun, earth and moon)")->check(CLI::ExistingFile);
     app.add_flag("--read-back", o.read_back, "also read every frame back as RGBA32F (what a files sink needs)");
-    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night, saturn")->delimiter(',');
+    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night, saturn, moonlit")->delimiter(',');
     app.add_option("--device", o.device, "EGL device index (-1: the first that works, else surfaceless)");
     app.add_option("--images", o.images, "also write DIR/frame-cost-<view>.png")->check(CLI::ExistingDirectory);
     if (auto rc = parse_command_line(app, argc, argv, "frame_cost")) return *rc;

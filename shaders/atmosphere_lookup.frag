@@ -43,6 +43,12 @@ uniform vec4 u_halo_map;   // its texture coordinate = gl_FragCoord.xy * u_halo_
 uniform sampler2D u_body_map;   // SKY_HALF 2: the planet's map (linear RGB), as the body pass has it
 uniform mat3 u_channel_to_body;
 uniform vec3 u_reflectance;     // albedo * tint
+uniform sampler2D u_moon_phased;  // SKY_MOON: the Moon's sky-view table (common/atmosphere/moonlit_sky.hpp)
+uniform sampler2D u_moon_mie;
+uniform sampler2D u_moon_third;
+uniform vec3 u_moon;            // unit, channel frame: camera -> Moon
+uniform vec3 u_moon_perp;       // atm_sky_view_sun_perp(-u_center_dir, u_moon)
+uniform vec3 u_moon_scale;      // the Moon's irradiance over the Sun's, per channel, times u_solar_scale
 
 layout(location = 0, index = 0) out vec4 out_add;
 layout(location = 0, index = 1) out vec4 out_factor;
@@ -82,12 +88,27 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
 //                     transmittance
 //   SKY_MAP           (outside) the draw relights the planet's surface itself, from its map, as
 //                     the ground half does inside: nothing else is in front of the air
+//   SKY_MOON          (inside) the Moon lights the air and the ground too, from its own table
+
+// The Moon's light along the ray (scene units; a camera inside the air): the in-scatter from its
+// own table at its own azimuth and phase angle, and where the ray meets the ground the ground lit
+// by it (the table's part 2 there) times the surface's reflectance.
+vec3 moonlight(vec3 v, bool ground, vec3 reflectance) {
+#if SKY_MOON
+    vec2 uv = atm_sky_view_inside_uv(u_atm, v, -u_center_dir, u_mu_h, u_moon_perp, ground, u_sky_size);
+    vec3 light = atm_sky_view_inscatter(u_atm, u_moon_phased, u_moon_mie, uv, dot(v, u_moon));
+    if (ground) light += reflectance * vec3(textureLod(u_moon_third, uv, 0.0));
+    return max(light, vec3(0.0)) * u_moon_scale;
+#else
+    return vec3(0.0);
+#endif
+}
 
 // The pixel's light from the table at uv: through the air (sky) or on the ground (relit surface).
 void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
     vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, nu);
     if (!ground) {
-        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale, 0.0);
+        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale + moonlight(v, false, vec3(0.0)), 0.0);
 #if SKY_FIRST
         out_factor = vec4(0.0, 0.0, 0.0, 1.0);  // nothing lies behind yet: no transmittance needed
 #else
@@ -104,7 +125,7 @@ void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) 
         if (hit.w >= 0.0) tint = eclipse_light(u_ecl, u_eclipse_lut, u_eclipse_lut_size, hit.xyz * u_distances_m.y);
     }
 #endif
-    out_add = vec4(max(reflectance * third + inscatter, vec3(0.0)) * u_solar_scale * tint, 0.0);
+    out_add = vec4((max(reflectance * third + inscatter, vec3(0.0)) * u_solar_scale + moonlight(v, true, reflectance)) * tint, 0.0);
     out_factor = vec4(0.0, 0.0, 0.0, 1.0);
 }
 

@@ -25,6 +25,8 @@ uniform SkyInFront u_sky;
 uniform sampler2D u_sky_phased;
 uniform sampler2D u_sky_mie;
 uniform sampler2D u_sky_third;
+uniform sampler2D u_sky_moon_phased;  // the Moon's table, with a moonlit sky (u_sky.moon_scale)
+uniform sampler2D u_sky_moon_mie;
 uniform int u_halo_on;     // the sky's draw added the glare's halo
 uniform sampler2D u_halo;  // as atmosphere_lookup.frag has them
 uniform vec4 u_halo_map;
@@ -39,8 +41,8 @@ layout(location = 0) out vec4 frag_color;
 vec3 through_the_air(vec3 v, vec3 radiance, float blocked) {
     if (atm_sky_in_front_hidden(u_atm, u_sky, v)) discard;
     vec2 uv = atm_sky_in_front_uv(u_atm, u_sky, v);
-    vec3 in_front = max(atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, dot(v, u_sky.sun)), vec3(0.0)) *
-                    u_sky.solar_scale;
+    vec3 in_front =
+        atm_sky_in_front_inscatter(u_atm, u_sky, u_sky_phased, u_sky_mie, u_sky_moon_phased, u_sky_moon_mie, v);
     if (u_halo_on != 0) in_front += textureLod(u_halo, gl_FragCoord.xy * u_halo_map.xy + u_halo_map.zw, 0.0).rgb;
     return radiance * vec3(textureLod(u_sky_third, uv, 0.0)) + blocked * in_front;
 }

@@ -16,6 +16,10 @@ uniform float u_sky_d_m;        // camera -> planet centre, metres
 uniform vec3 u_sky_center_dir;  // unit, world frame: camera -> planet centre
 uniform vec3 u_sky_sun;         // unit, world frame: planet centre -> Sun
 uniform float u_sky_to_cd_m2;   // the table's values to cd/m^2
+uniform sampler2D u_moon_phased;  // the Moon's table (star_moon_sky), when u_moon_ratio > 0
+uniform sampler2D u_moon_mie;
+uniform vec3 u_moon;              // unit, world frame: camera -> Moon
+uniform float u_moon_ratio;       // its luminous irradiance over the Sun's; 0: no moonlit sky
 uniform int u_star_count;       // the stars to judge: those the magnitude limits leave, a prefix
 uniform int u_width;            // texels per row
 // The star draw's indirect command (glDrawArraysIndirect), count 0 when this pass starts.
@@ -32,6 +36,9 @@ void main() {
     vec4 star = texelFetch(u_stars, ivec2(gl_FragCoord.xy), 0);
     vec4 light = star_sky_light(u_atm, u_sky_phased, u_sky_mie, u_sky_third, u_sky_size, u_sky_d_m, star.xyz,
                                 u_sky_center_dir, u_sky_sun);
+    if (u_moon_ratio > 0.0 && light.w >= 0.0)
+        light.w += star_moon_sky(u_atm, u_moon_phased, u_moon_mie, u_sky_size, u_sky_d_m, star.xyz, u_sky_center_dir,
+                                 u_moon, u_moon_ratio);
     int index = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
     float weight = index < u_star_count ? star_sky_weight(star_sky_behind_of(light), u_sky_to_cd_m2, star.w) : 0.0;
     if (weight > 0.0) atomicMax(u_draw.count, uint(index + 1));

@@ -17,6 +17,7 @@
 #include "passes/glare_pass.hpp"
 #include "passes/glare_probe.hpp"
 #include "passes/milky_way_pass.hpp"
+#include "passes/moonlight.hpp"
 #include "passes/painter_pass.hpp"
 #include "passes/pattern_pass.hpp"
 #include "passes/planet_point_pass.hpp"
@@ -208,6 +209,7 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
         if (it.body->kind != BodyKind::Star)
             f.casters[it.body->id] = casting->casters_for(snap, it.body->id, f.view.world_to_channel);
     set_planet_lights(f);
+    f.moonlight = brightest_moonlight(f);
     f.sky_first = atmosphere && stars_see_the_sky && nothing_else_before_the_sky && atmosphere->sky_first(f);
     return f;
 }

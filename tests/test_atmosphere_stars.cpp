@@ -360,6 +360,47 @@ TEST(AtmosphereStars, OnlyTheStarsTheEyeCouldSeeAgainstTheSkyAreDrawn) {
     EXPECT_GE(twilight_split, 2) << "in twilight the sky hides the faint stars and shows the bright ones";
 }
 
+namespace {
+// The snapshot with the scene's Moon (body 2) at its mean distance along moon_dir from the camera.
+Snapshot with_moon(Snapshot s, const glm::dvec3& moon_dir) {
+    s.bodies.resize(3);
+    s.bodies[2].id = 2;
+    s.bodies[2].position_m = s.camera_position_m + 3.844e8 * glm::normalize(moon_dir);
+    return s;
+}
+}  // namespace
+
+TEST(AtmosphereStars, AMoonUpHidesTheFaintStarsItsSkyOutshines) {
+    // Six stars of V = 1 .. 6 around the zenith at night (the Sun 30 degrees down); a nearly full
+    // Moon 40 degrees up behind the channel, then set 50 degrees under the horizon.
+    std::vector<glm::dvec3> stars;
+    std::vector<double> vmag;
+    for (int i = 0; i < 6; ++i) {
+        stars.push_back(radec_to_vec(glm::radians(60.0 * i), glm::radians(75.0)));
+        vmag.push_back(i + 1.0);
+    }
+    const SceneConfig scene = make_scene("moonlit", "sky-view", stars, vmag, false, true);
+    const ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 30.0, 30.0, 30.0});
+    const ChannelFrustum f = cluster.channels[0].frustum();
+    context();
+    SceneRenderer r(cluster, cluster.channels[0], scene);
+    const Snapshot night = snapshot(2.0, sun_at_zenith_deg(120.0));
+    int seen[2] = {0, 0};
+    for (const bool up : {false, true}) {
+        const Snapshot s = with_moon(night, up ? glm::dvec3(-0.766, 0.0, 0.643) : glm::dvec3(-0.643, 0.0, -0.766));
+        const std::vector<double> light = each_star_light(r, f, s, vmag);
+        const SkyJudge judge(scene, s);  // the Sun's sky alone: the Moon's is not in it
+        for (size_t i = 0; i < stars.size(); ++i) {
+            const double drawn = light[i] / (vacuum_flux(scene, vmag[i]) * judge.behind(stars[i]).y);
+            std::printf("Moon %s: V = %.0f drawn %.3f of its light\n", up ? "up" : "set", vmag[i], drawn);
+            seen[up ? 1 : 0] += drawn > 0.5 ? 1 : 0;
+        }
+    }
+    EXPECT_EQ(seen[0], 6) << "under a dark sky every star";
+    EXPECT_GE(seen[1], 2) << "the bright stars through the moonlit sky";
+    EXPECT_LE(seen[1], 4) << "not the faint ones";
+}
+
 TEST(AtmosphereStars, AStarFadingOnTheEdgeBetweenTwoChannelsShowsAlikeInBoth) {
     // The star at the zenith, on the edge between two channels that look up side by side; its
     // magnitude puts it half-way into its fade in twilight.

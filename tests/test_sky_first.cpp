@@ -140,8 +140,10 @@ TEST(SkyFirst, TheMoonThroughTheAirIsTheSameAndTheGroundHidesItsLowerHalf) {
     const ClusterConfig cl = one_channel(1.0);
     Rendered first, last;
     expect_same_image(cl, v, 1e-5f, &first, &last);
-    // Against the same view with the Moon behind the camera: above the horizon the Moon shows,
-    // below it the ground covers the Moon exactly.
+    // Against the same view with the Moon behind the camera: above the horizon the Moon shows;
+    // below it the ground covers the Moon: only the ground and the air in front of it, which the
+    // Moon lights as well (the moonlit sky: brightest toward the Moon, so not the bare frame's),
+    // far under the disc's light.
     View away = v;
     away.moon_az = v.look_az + 180.0;
     context();
@@ -152,8 +154,10 @@ TEST(SkyFirst, TheMoonThroughTheAirIsTheSameAndTheGroundHidesItsLowerHalf) {
     // the Moon; 9 rows below it 0.09 degrees down, on the Moon too but below the horizon (its dip
     // from 2 m is 0.045 degrees).
     const int above = with.height / 2 - 6, below = with.height / 2 + 9;
+    std::printf("the Moon above the horizon %.3g, the ground below it %.3g\n", with.pixel(cx, above)[1],
+                with.pixel(cx, below)[1]);
     EXPECT_GT(with.pixel(cx, above)[1], 2.0f * bare.image.pixel(cx, above)[1]);
-    for (int x = 0; x < with.width; ++x) EXPECT_EQ(with.pixel(x, below)[1], bare.image.pixel(x, below)[1]) << x;
+    for (int x = 0; x < with.width; ++x) EXPECT_LT(with.pixel(x, below)[1], 1e-2f * with.pixel(cx, above)[1]) << x;
     // To look at (docs/images/sky-first-moonrise.png): CUPOLA_TEST_IMAGES=DIR writes both orders.
     if (const char* dir = std::getenv("CUPOLA_TEST_IMAGES")) {
         const double exposure = snapshot(cl, v).settings.exposure;

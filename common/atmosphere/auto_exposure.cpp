@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "atmosphere/moonlit_sky.hpp"
 #include "atmosphere/solar_scale.hpp"
 #include "projection/dome_frame.hpp"
+#include "scene/planet_magnitude.hpp"
+#include "scene/sky_positions.hpp"
 #include "scene/snapshot_bodies.hpp"
 
 namespace cupola {
@@ -12,6 +15,26 @@ namespace cupola {
 namespace {
 constexpr int kGrid = 8;  // rays per channel side
 }  // namespace
+
+// The slaves light the night sky with the drawn light of the brightest body (slave/passes/
+// moonlight.hpp); for the bodies with a measured phase curve (the Moon, the planets) that light is
+// the curve's, which is what the exposure takes here, in units of the Sun's irradiance at 1 AU.
+SkySecondLight AutoExposure::second_light(const Snapshot& snap, const BodyState& sun) const {
+    SkySecondLight out;
+    double best = 0.0;
+    for (const BodyState& st : snap.bodies) {
+        const BodyConfig& b = scene_->bodies[st.id];
+        if (b.kind == BodyKind::Star || b.atmosphere.present) continue;
+        const PlanetGeometry g = planet_geometry(st.position_m, st.orientation, sun.position_m, snap.camera_position_m);
+        const std::optional<double> ratio = phase_curve_irradiance_ratio(b.ephemeris, b.radius_m, g);
+        if (!ratio || !(*ratio > best)) continue;
+        best = *ratio;
+        out.present = true;
+        out.position_m = st.position_m;
+        out.irradiance_rgb = *ratio * sunlight_at_centre(casting_->casters_for(snap, st.id, glm::dmat3(1.0)));
+    }
+    return out;
+}
 
 AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres)
     : cluster_(&cluster),
@@ -56,6 +79,10 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         // Eclipse shadows on this body, relative to its centre in world axes (what the slaves do
         // in channel axes), so that the exposure opens up in totality.
         const shading::EclipseCasters casters = casting_->casters_for(snap, st->id, glm::dmat3(1.0));
+        const double au_over_sun = kAstronomicalUnit_m / glm::length(sun_state->position_m - st->position_m);
+        const MoonOnAir moon =
+            moon_on_air(second_light(snap, *sun_state), snap.camera_position_m, st->position_m,
+                        glm::normalize(sun_state->position_m - st->position_m), au_over_sun * au_over_sun, body->model);
         for (const glm::dvec3& v : dirs) {
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
@@ -64,9 +91,17 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
                                      glm::vec3(-to_centre + v * static_cast<double>(start.offset_m)), glm::vec3(v));
             const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr, shadow);
             sum += body->model.to_xyz(f).y * scale;
+            if (moon.on) sum += moonlit_luminance(body->model, d, v, c_hat, moon) * scale;
         }
     }
     return dirs.empty() ? 0.0 : sum / static_cast<double>(dirs.size());
+}
+
+double AutoExposure::moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,
+                                       const glm::dvec3& c_hat, const MoonOnAir& moon) {
+    const auto start = shading::atm_ray_start(model.shader_params(), static_cast<float>(d_m), glm::vec3(v),
+                                              glm::vec3(c_hat), glm::vec3(moon.dir_world));
+    return model.to_xyz(model.radiance(start, -1.0f, nullptr)).y * shading::rec709_luminance(glm::vec3(moon.ratio_rgb));
 }
 
 double AutoExposure::exposure(const Snapshot& snap) const {

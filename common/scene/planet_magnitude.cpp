@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "scene/sky_positions.hpp"
+
 namespace cupola {
 
 namespace {
@@ -90,6 +92,28 @@ std::optional<double> planet_magnitude_v(const std::string& planet, const Planet
         v -= 2.5 * std::log10(ratio);
     }
     return v;
+}
+
+PlanetGeometry planet_geometry(const glm::dvec3& body_m, const glm::dquat& orientation, const glm::dvec3& sun_m,
+                               const glm::dvec3& observer_m) {
+    const glm::dvec3 to_sun = sun_m - body_m, to_observer = observer_m - body_m;
+    const glm::dvec3 pole = orientation * glm::dvec3(0.0, 0.0, 1.0);
+    PlanetGeometry g;
+    g.sun_distance_au = glm::length(to_sun) / kAstronomicalUnit_m;
+    g.observer_distance_au = glm::length(to_observer) / kAstronomicalUnit_m;
+    g.phase_deg = glm::degrees(std::atan2(glm::length(glm::cross(to_sun, to_observer)), glm::dot(to_sun, to_observer)));
+    g.sub_sun_latitude_deg = glm::degrees(std::asin(std::clamp(glm::dot(pole, glm::normalize(to_sun)), -1.0, 1.0)));
+    g.sub_observer_latitude_deg =
+        glm::degrees(std::asin(std::clamp(glm::dot(pole, glm::normalize(to_observer)), -1.0, 1.0)));
+    return g;
+}
+
+std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m,
+                                                   const PlanetGeometry& g) {
+    const PhaseCurve* curve = find_phase_curve(planet);
+    if (!curve) return std::nullopt;
+    const double size = radius_m / curve->radius_m;
+    return size * size * std::pow(10.0, -0.4 * (*planet_magnitude_v(planet, g) - kSunMagnitudeV));
 }
 
 }  // namespace cupola

@@ -10,6 +10,9 @@
 // Beyond the largest phase angle each fit was made from (Mercury 170, Venus 179, Earth 170, Mars 120,
 // Jupiter 130, Saturn 150, Uranus 154, Neptune 133.14, Moon 150 deg) the curve goes on as a Lambert sphere's
 // from the value there, so it stays continuous and finite up to 180 deg.
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
 #include <optional>
 #include <string>
 
@@ -26,6 +29,11 @@ struct PlanetGeometry {
     double sub_observer_latitude_deg = 0.0;
 };
 
+// The geometry of a body at body_m turned by `orientation` (its pole its +z), lit by the Sun at
+// sun_m and seen from observer_m (world positions, double).
+PlanetGeometry planet_geometry(const glm::dvec3& body_m, const glm::dquat& orientation, const glm::dvec3& sun_m,
+                               const glm::dvec3& observer_m);
+
 // A measured phase curve: the largest phase angle of its data, and the radius of the body it was
 // measured on (a scene body of another size scales its light by the square of the ratio).
 struct PhaseCurve {
@@ -39,6 +47,11 @@ const PhaseCurve* find_phase_curve(const std::string& planet);
 // V of the planet named by its ephemeris ("mercury" ... "neptune"); none for a body without a
 // fitted curve (Pluto, the moons other than ours: "moon" has Allen's).
 std::optional<double> planet_magnitude_v(const std::string& planet, const PlanetGeometry& g);
+
+// The irradiance a body with a measured phase curve sends to its observer, over the Sun's
+// irradiance at 1 AU: the curve's magnitude as a flux relative to the Sun's, for a body of
+// radius_m (the curve's body scaled by the square of the ratio); none without a curve.
+std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g);
 
 // A Lambert sphere's phase function (sin a + (pi - a) cos a) / pi: 1 at full phase.
 double lambert_phase(double phase_rad);

@@ -238,3 +238,17 @@ vec2 atm_sky_view_pixel_uv(AtmosphereParams a, float d_m, vec3 v, vec3 c_hat, ve
 vec3 atm_sky_view_inscatter(AtmosphereParams a, sampler2D t0, sampler2D t1, vec2 uv, float nu) {
     return vec3(textureLod(t0, uv, 0.0)) + vec3(textureLod(t1, uv, 0.0)) * atm_cornette_shanks_phase(a.mie_g, nu);
 }
+
+// The air's own light in front of what lies beyond it along v (not hidden), in scene units: the
+// Sun's in-scatter from its table (parts t0, t1) and, with a moonlit sky (s.moon_scale not 0), the
+// Moon's from its own table (m0, m1) at its own azimuth and phase angle.
+vec3 atm_sky_in_front_inscatter(AtmosphereParams a, SkyInFront s, sampler2D t0, sampler2D t1, sampler2D m0,
+                                sampler2D m1, vec3 v) {
+    vec2 uv = atm_sky_in_front_uv(a, s, v);
+    vec3 light = max(atm_sky_view_inscatter(a, t0, t1, uv, dot(v, s.sun)), vec3(0.0)) * s.solar_scale;
+    if (s.moon_scale.x + s.moon_scale.y + s.moon_scale.z > 0.0) {
+        vec2 moon_uv = atm_sky_view_inside_uv(a, v, s.up, s.mu_h, s.moon_perp, false, s.size);
+        light = light + max(atm_sky_view_inscatter(a, m0, m1, moon_uv, dot(v, s.moon)), vec3(0.0)) * s.moon_scale;
+    }
+    return light;
+}

@@ -88,6 +88,9 @@ struct SkyInFront {
     vec3 sun_perp;      // atm_sky_view_sun_perp(up, sun)
     vec2 size;          // the table's size in texels
     float solar_scale;  // the scene's solar irradiance over that of the model's physical spectrum
+    vec3 moon;          // unit, camera -> Moon (common/atmosphere/moonlit_sky.hpp)
+    vec3 moon_perp;     // atm_sky_view_sun_perp(up, moon)
+    vec3 moon_scale;    // its irradiance over the Sun's per channel, times solar_scale; 0: no moonlit sky
 };
 
 struct AtmosphereAnalyticFit {

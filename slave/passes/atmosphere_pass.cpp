@@ -36,13 +36,22 @@ atmosphere::ProductionAtmosphere make_model(const BodyConfig& body) {
 }
 
 // tables: 2..5, sky view: 7..9
-enum Unit : GLuint { kGeometry = 1, kTables = 2, kEclipseLut = 6, kSkyView = 7, kHalo = 10, kSurface = 11 };
+enum Unit : GLuint {
+    kGeometry = 1,
+    kTables = 2,
+    kEclipseLut = 6,
+    kSkyView = 7,
+    kHalo = 10,
+    kSurface = 11,
+    kMoonSky = 12
+};
 
 // Direction from the planet's centre to the Sun (as the body pass lights it), and the Sun's
 // irradiance there in scene units over that of the model's physical spectrum; in double.
 struct PlanetSun {
     glm::dvec3 dir_world{0.0, 0.0, 1.0};
     double solar_scale = 0.0;  // 0: no Sun
+    double irradiance = 0.0;   // scene units
 };
 PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphere::ProductionAtmosphere& m) {
     PlanetSun out;
@@ -51,7 +60,8 @@ PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphe
     const double d_sun = glm::length(to_sun);
     if (d_sun <= 0.0) return out;
     out.dir_world = to_sun / d_sun;
-    out.solar_scale = sun_irradiance(sun, d_sun) / atmosphere::physical_solar_illuminance(m);
+    out.irradiance = sun_irradiance(sun, d_sun);
+    out.solar_scale = out.irradiance / atmosphere::physical_solar_illuminance(m);
     return out;
 }
 
@@ -124,6 +134,12 @@ GpuSkyViewTable* GpuAtmosphere::sky_view() {
     return sky_view_.get();
 }
 
+GpuSkyViewTable* GpuAtmosphere::moon_sky_view() {
+    if (!model_.quality().sky_view) return nullptr;
+    if (!moon_sky_view_) moon_sky_view_ = std::make_unique<GpuSkyViewTable>(*this);
+    return moon_sky_view_.get();
+}
+
 void GpuAtmosphere::bind(GLuint first_unit) const {
     transmittance_.bind(first_unit);
     multiple_scattering_.bind(first_unit + 1);
@@ -155,17 +171,17 @@ AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUnifo
       bodies_(bodies) {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
-    auto& p = lookup_programs_[variant & 255];
+    auto& p = lookup_programs_[variant & 511];
     if (!p) {
-        const std::string defines = "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
-                                    std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " +
-                                    std::to_string((variant >> 2) & 1) + "\n#define SKY_HALO " +
-                                    std::to_string((variant >> 3) & 1) + "\n#define SKY_HALF " +
-                                    std::to_string((variant & 16)   ? 2
-                                                   : (variant & 32) ? 1
-                                                                    : 0) +
-                                    "\n#define SKY_FIRST " + std::to_string((variant >> 6) & 1) + "\n#define SKY_MAP " +
-                                    std::to_string((variant >> 7) & 1) + "\n";
+        const std::string defines =
+            "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
+            std::to_string((variant >> 1) & 1) + "\n#define SKY_ILLUSTRATIVE " + std::to_string((variant >> 2) & 1) +
+            "\n#define SKY_HALO " + std::to_string((variant >> 3) & 1) + "\n#define SKY_HALF " +
+            std::to_string((variant & 16)   ? 2
+                           : (variant & 32) ? 1
+                                            : 0) +
+            "\n#define SKY_FIRST " + std::to_string((variant >> 6) & 1) + "\n#define SKY_MAP " +
+            std::to_string((variant >> 7) & 1) + "\n#define SKY_MOON " + std::to_string((variant >> 8) & 1) + "\n";
         p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
@@ -174,7 +190,8 @@ const GlProgram& AtmospherePass::lookup_program(int variant) {
 long AtmospherePass::sky_view_renders() const {
     long n = 0;
     for (const auto& it : atmospheres_)
-        if (const GpuSkyViewTable* t = it.second->sky_view_if_made()) n += t->renders();
+        for (const GpuSkyViewTable* t : {it.second->sky_view_if_made(), it.second->moon_sky_view_if_made()})
+            if (t) n += t->renders();
     return n;
 }
 
@@ -190,7 +207,10 @@ int AtmospherePass::prepare(const FrameContext& frame) {
             ++skipped;
             continue;
         }
-        layers_.push_back({&it, atm->second.get(), other_body_in_shell(frame, it, atm->second->top_radius_m())});
+        const PlanetSun ps = planet_sun(*it.state, frame.light, atm->second->model());
+        layers_.push_back({&it, atm->second.get(), other_body_in_shell(frame, it, atm->second->top_radius_m()),
+                           moon_on_air(frame.moonlight, frame.view.camera_position_m, it.state->position_m,
+                                       ps.dir_world, ps.irradiance, atm->second->model())});
     }
     run_ += static_cast<long>(layers_.size());
     skipped_ += skipped;
@@ -250,6 +270,14 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     out.center_dir_world = glm::vec3(glm::normalize(to_centre));
     out.sun_world = glm::vec3(ps.dir_world);
     out.to_cd_m2 = static_cast<float>(atmosphere::sky_to_cd_m2(ps.solar_scale, f.light.radiance));
+    const MoonOnAir moon = moon_on_air(f.moonlight, f.view.camera_position_m, planet->state->position_m, ps.dir_world,
+                                       ps.irradiance, atm->model());
+    if (moon.on) {  // the same rule as the atmosphere's draw
+        out.moon_table = atm->moon_sky_view();
+        out.moon_mu = moon.mu;
+        out.moon_world = glm::vec3(moon.dir_world);
+        out.moon_ratio = static_cast<float>(shading::rec709_luminance(glm::vec3(moon.ratio_rgb)));
+    }
     return out;
 }
 
@@ -290,6 +318,15 @@ void AtmospherePass::set_sky_in_front(const GlProgram& p) const {
     p.set("u_sky.sun_perp", shading::atm_sky_view_sun_perp(up, sun));
     p.set("u_sky.size", table.size());
     p.set("u_sky.solar_scale", static_cast<float>(ps.solar_scale));
+    const glm::vec3 moon(f.view.world_to_channel * l.moon.dir_world);
+    p.set("u_sky.moon", moon);
+    p.set("u_sky.moon_perp", shading::atm_sky_view_sun_perp(up, moon));
+    p.set("u_sky.moon_scale", l.moon.on ? glm::vec3(l.moon.ratio_rgb * ps.solar_scale) : glm::vec3(0.0f));
+    if (l.moon.on) {  // the table the sky's draw brought up to date
+        l.atmosphere->moon_sky_view()->bind(kFirstUnit + 4);
+        p.set("u_sky_moon_phased", static_cast<int>(kFirstUnit + 4));
+        p.set("u_sky_moon_mie", static_cast<int>(kFirstUnit + 5));
+    }
     table.bind(kFirstUnit);
     p.set("u_sky_phased", static_cast<int>(kFirstUnit));
     p.set("u_sky_mie", static_cast<int>(kFirstUnit + 1));
@@ -306,6 +343,7 @@ AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     AtmosphereDrawExtras e;
     e.halo = halo_for(step);
     const Layer& l = layers_.at(static_cast<size_t>(step));
+    e.moon = l.moon;
     if (draws_surface(*frame_, *l.body)) {
         e.surface_map = bodies_->texture(l.body->body->id);
         e.channel_to_body = BodyPass::channel_to_body(frame_->view, *l.body->state);
@@ -335,12 +373,14 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
         const shading::AtmosphereParams& a = m.shader_params();
         const bool outside = shading::atm_camera_outside(a, table_in.x);
         const bool illustrative = casters.count > 0;
+        if (outside) extras.moon.on = false;  // atmosphere/moonlit_sky.hpp: from inside the air only
+        if (extras.moon.on) atm.moon_sky_view()->update(table_in.x, extras.moon.mu);  // before the program is used
         const GlProgram& lookup = lookup_program(
             (outside ? 1 : 0) | (geometry_in_air ? 2 : 0) | (illustrative ? 4 : 0) | (extras.halo ? 8 : 0) |
             (half == 2   ? 16
              : half == 1 ? 32
                          : 0) |
-            (extras.sky_first ? 64 : 0) | (extras.surface_map && outside ? 128 : 0));
+            (extras.sky_first ? 64 : 0) | (extras.surface_map && outside ? 128 : 0) | (extras.moon.on ? 256 : 0));
         lookup.use();
         if (extras.halo) {
             extras.halo->texture().bind(kHalo);
@@ -364,7 +404,8 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
     }
     ++marched_;
     if (extras.surface_map) throw std::logic_error("atmosphere pass: a marched draw cannot draw the planet's surface");
-    extras.halo = nullptr;  // the march adds none: the glare pass upsamples it
+    extras.halo = nullptr;   // the march adds none: the glare pass upsamples it
+    extras.moon.on = false;  // nor the Moon's light (the look-up's alone)
     const atmosphere::ProductionQuality& q = m.quality();
     program_.use();
     program_.set("u_fit.k1_rad", m.analytic_fit().k1_rad);
@@ -389,6 +430,7 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
         // drawn here, the planet's map gives its reflectance (SKY_MAP).
         const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, extras, 0);
         set_draw_uniforms(p, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        if (extras.moon.on) set_moon_uniforms(p, view, atm, sphere, extras.moon, ps.solar_scale);
         blend_draw(p, view, r, make_sphere_view(view, state.position_m, atm.top_radius_m()));
     } else {
         // Two draws split by the ray's ground flag, each discarding the other's pixels: the sky over
@@ -396,9 +438,11 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
         // the planet's own cap.
         const GlProgram& sky = choose_program(atm, table_in, casters, geometry_in_air, extras, 1);
         set_draw_uniforms(sky, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        if (extras.moon.on) set_moon_uniforms(sky, view, atm, sphere, extras.moon, ps.solar_scale);
         blend_draw(sky, view, r, complement_cover(view, sphere), extras.sky_first);
         const GlProgram& ground = choose_program(atm, table_in, casters, geometry_in_air, extras, 2);
         set_draw_uniforms(ground, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        if (extras.moon.on) set_moon_uniforms(ground, view, atm, sphere, extras.moon, ps.solar_scale);
         blend_draw(ground, view, r, sphere, extras.sky_first);
     }
     if (extras.halo) {
@@ -406,7 +450,20 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
         ++halos_added_;
     }
     if (extras.surface_map) ++surfaces_drawn_;
+    if (extras.moon.on) ++moonlit_;
     gl::check("atmosphere pass (" + m.parameters().name + ")");
+}
+
+void AtmospherePass::set_moon_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm,
+                                       const SphereView& sphere, const MoonOnAir& moon, double solar_scale) {
+    const glm::vec3 moon_dir(view.world_to_channel * moon.dir_world);
+    atm.moon_sky_view()->bind(kMoonSky);
+    p.set("u_moon_phased", static_cast<int>(kMoonSky));
+    p.set("u_moon_mie", static_cast<int>(kMoonSky + 1));
+    p.set("u_moon_third", static_cast<int>(kMoonSky + 2));
+    p.set("u_moon", moon_dir);
+    p.set("u_moon_perp", shading::atm_sky_view_sun_perp(-glm::vec3(sphere.center_dir), moon_dir));
+    p.set("u_moon_scale", glm::vec3(moon.ratio_rgb * solar_scale));
 }
 
 void AtmospherePass::set_draw_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm,

@@ -30,6 +30,7 @@
 #include "passes/body_pass.hpp"
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/glare_halo_pass.hpp"
+#include "atmosphere/moonlit_sky.hpp"
 #include "passes/render_pass.hpp"
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
@@ -53,6 +54,10 @@ public:
     // The sky-view table of a sky-view level (null for the march levels), created on first use.
     GpuSkyViewTable* sky_view();
     const GpuSkyViewTable* sky_view_if_made() const { return sky_view_.get(); }
+    // The moonlit sky's table (atmosphere/moonlit_sky.hpp): the same table for the Moon's zenith angle, created
+    // on first use (null for the march levels).
+    GpuSkyViewTable* moon_sky_view();
+    const GpuSkyViewTable* moon_sky_view_if_made() const { return moon_sky_view_.get(); }
     // The second wavelength triplet's transmittance, multiple scattering and irradiance (a
     // six-wavelength sky-view level; 1x1 placeholders otherwise) to units first_unit .. + 2.
     void bind_second(GLuint first_unit) const;
@@ -61,7 +66,7 @@ private:
     atmosphere::ProductionAtmosphere model_;
     GlTexture transmittance_, multiple_scattering_, irradiance_, color_weights_;
     GlTexture transmittance2_, multiple_scattering2_, irradiance2_;
-    std::unique_ptr<GpuSkyViewTable> sky_view_;
+    std::unique_ptr<GpuSkyViewTable> sky_view_, moon_sky_view_;
 };
 
 // True when a sphere (centre in the channel frame, metres) lies entirely outside the channel's
@@ -75,6 +80,7 @@ struct AtmosphereDrawExtras {
     glm::mat3 channel_to_body{1.0f};
     glm::vec3 surface_reflectance{0.0f};  // albedo * tint, as the body pass writes it
     bool sky_first = false;               // written, not blended: the frame's sky is drawn first
+    MoonOnAir moon;                       // the Moon's light on the air (a look-up from inside only)
 };
 
 class AtmospherePass : public RenderPass, public StarSkySource, public SkyInFrontSource {
@@ -99,7 +105,8 @@ public:
     long draws_run() const { return run_; }                   // summed over frames
     long draws_skipped() const { return skipped_; }           // atmosphere entirely outside the frustum
     long draws_marched() const { return marched_; }           // drawn by the per-pixel march
-    long sky_view_renders() const;                            // sky-view tables rendered, all bodies
+    long sky_view_renders() const;                            // sky-view tables rendered, all bodies (the Moon's too)
+    long moonlit_draws() const { return moonlit_; }           // draws that added the Moon's light
     long halos_added() const { return halos_added_; }         // draws that added the glare's halo
     void set_add_halo(bool on) { add_halo_ = on; }            // SceneRenderer::set_halo_with_atmosphere
     long surfaces_drawn() const { return surfaces_drawn_; }   // draws that drew their planet's surface
@@ -142,6 +149,7 @@ private:
         const FrameBody* body;
         GpuAtmosphere* atmosphere;
         bool geometry_in_air;  // another body meets this atmosphere's shell
+        MoonOnAir moon;        // the Moon's light on its air this frame (atmosphere/moonlit_sky.hpp)
     };
     // The program for this draw: the look-up, or the march (set up with its own uniforms).
     // table_in: the sky-view table's (camera distance, Sun zenith cosine).
@@ -150,6 +158,9 @@ private:
     const GlProgram& choose_program(GpuAtmosphere& atmosphere, const glm::vec2& table_in,
                                     const shading::EclipseCasters& casters, bool geometry_in_air,
                                     AtmosphereDrawExtras& extras, int half);
+    // The Moon's table and light for a moonlit look-up (extras.moon.on).
+    void set_moon_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm, const SphereView& sphere,
+                           const MoonOnAir& moon, double solar_scale);
     // What every draw of a layer sets: the view, the planet, the Sun, the tables, the G-buffer.
     void set_draw_uniforms(const GlProgram& p, const ChannelView& view, GpuAtmosphere& atm, const SphereView& sphere,
                            double solar_scale, const glm::dvec3& sun_dir, const GlTexture& geometry,
@@ -162,20 +173,20 @@ private:
     AtmosphereDrawExtras extras_for(int step) const;
     // The look-up program of a variant (bits: outside, geometry in the air, illustrative, glare
     // halo added, the ground half with the surface, the sky half, the sky drawn first, the surface
-    // from its map seen from outside), compiled on first use.
+    // from its map seen from outside, the Moon's light), compiled on first use.
     const GlProgram& lookup_program(int variant);
     // The glare halo the draw of layer `step` adds: the nearest layer's, when it covers the channel.
     const GlareHaloPass* halo_for(int step) const;
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
     GlProgram program_;
-    std::unique_ptr<GlProgram> lookup_programs_[256];
+    std::unique_ptr<GlProgram> lookup_programs_[512];
     const GlareHaloPass* halo_;
     const BodyPass* bodies_;
     GlEmptyVertexArray vao_;
     const FrameContext* frame_ = nullptr;
     std::vector<Layer> layers_;  // this frame's draws
-    long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0, surfaces_drawn_ = 0;
+    long run_ = 0, skipped_ = 0, marched_ = 0, halos_added_ = 0, surfaces_drawn_ = 0, moonlit_ = 0;
     bool add_halo_ = true, draw_surfaces_ = true, sky_first_on_ = true;
 };
 

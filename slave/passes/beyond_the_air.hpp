@@ -22,12 +22,15 @@
 namespace cupola {
 
 // Who sets what a draw beyond the air needs in a frame whose sky was drawn first: u_atm, u_sky
-// (SkyInFront), the sky-view table's parts as u_sky_phased, u_sky_mie, u_sky_third, and the glare
-// halo the sky's draw added (u_halo_on, u_halo, u_halo_map). The atmosphere pass.
+// (SkyInFront), the sky-view table's parts as u_sky_phased, u_sky_mie, u_sky_third, the glare
+// halo the sky's draw added (u_halo_on, u_halo, u_halo_map), and with a moonlit sky the Moon's
+// table's first two parts as u_sky_moon_phased, u_sky_moon_mie (common/atmosphere/moonlit_sky.hpp). The
+// atmosphere pass.
 class SkyInFrontSource {
 public:
     virtual ~SkyInFrontSource() = default;
-    // Binds the textures to units kFirstUnit .. kFirstUnit + 3 and sets p's uniforms (p in use).
+    // Binds the textures to units kFirstUnit .. kFirstUnit + 6 (the Moon's table the last three;
+    // units up to 18: every GL 4.5 driver Cupola runs on has 32 per stage) and sets p's uniforms (p in use).
     virtual void set_sky_in_front(const GlProgram& p) const = 0;
     static constexpr unsigned kFirstUnit = 12;
 };

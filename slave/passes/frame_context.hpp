@@ -4,6 +4,7 @@
 #include <map>
 #include <vector>
 
+#include "atmosphere/moonlit_sky.hpp"
 #include "config/scene_config.hpp"
 #include "passes/channel_view.hpp"
 #include "passes/planet_light.hpp"
@@ -45,6 +46,9 @@ struct FrameContext {
     // The sky is drawn first, and what lies beyond the air after it (slave/passes/beyond_the_air.hpp;
     // decided by AtmospherePass::sky_first): the colour is then not cleared.
     bool sky_first = false;
+    // The night sky's second light (passes/moonlight.hpp): the brightest planet or moon at the
+    // camera, from the snapshot alone, the same on every channel.
+    SkySecondLight moonlight;
 
     const shading::EclipseCasters& casters_of(uint16_t body) const { return casters.at(body); }
 };

@@ -21,16 +21,7 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
 
 // The Sun - body - camera geometry of the magnitude fits.
 PlanetGeometry planet_geometry(const BodyState& s, const PlanetLightInputs& in) {
-    const glm::dvec3 to_sun = in.sun_position_m - s.position_m, to_camera = in.camera_position_m - s.position_m;
-    const glm::dvec3 pole = s.orientation * glm::dvec3(0.0, 0.0, 1.0);
-    PlanetGeometry g;
-    g.sun_distance_au = glm::length(to_sun) / kAstronomicalUnit_m;
-    g.observer_distance_au = glm::length(to_camera) / kAstronomicalUnit_m;
-    g.phase_deg = glm::degrees(angle_between(to_sun, to_camera));
-    g.sub_sun_latitude_deg = glm::degrees(std::asin(std::clamp(glm::dot(pole, glm::normalize(to_sun)), -1.0, 1.0)));
-    g.sub_observer_latitude_deg =
-        glm::degrees(std::asin(std::clamp(glm::dot(pole, glm::normalize(to_camera)), -1.0, 1.0)));
-    return g;
+    return cupola::planet_geometry(s.position_m, s.orientation, in.sun_position_m, in.camera_position_m);
 }
 
 // The surface's lunar-Lambert weight at a phase angle (0 for a Lambert surface).
@@ -62,11 +53,9 @@ double model_disc_flux(const BodyConfig& b, const BodyState& s, const PlanetGeom
 // The irradiance a body's measured phase curve gives at its observer (g), if it has one, for the
 // body's own size: the curve's magnitude, a flux relative to the Sun's at 1 AU.
 std::optional<double> curve_irradiance(const BodyConfig& b, const PlanetGeometry& g, double sun_irradiance_1au) {
-    const PhaseCurve* curve = find_phase_curve(b.ephemeris);
-    if (!curve) return std::nullopt;
-    const double size = b.radius_m / curve->radius_m;
-    return size * size * sun_irradiance_1au *
-           std::pow(10.0, -0.4 * (*planet_magnitude_v(b.ephemeris, g) - kSunMagnitudeV));
+    const std::optional<double> ratio = phase_curve_irradiance_ratio(b.ephemeris, b.radius_m, g);
+    if (!ratio) return std::nullopt;
+    return *ratio * sun_irradiance_1au;
 }
 
 // The measured phase curve's light at the camera, if the body has one.

@@ -75,6 +75,7 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     if (count == 0) return;
     if (sky.table) {  // the same table the atmosphere's draw looks up, rendered here when not current
         sky.table->update(sky.table_in.x, sky.table_in.y);
+        if (sky.moon_table) sky.moon_table->update(sky.table_in.x, sky.moon_mu);
         sky_weights_->update(sky, count);
     }
     program_.use();

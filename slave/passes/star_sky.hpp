@@ -19,6 +19,13 @@ struct StarSky {
     glm::vec3 center_dir_world{0.0f, 0.0f, -1.0f};  // unit, camera -> planet centre
     glm::vec3 sun_world{0.0f, 0.0f, 1.0f};          // unit, planet centre -> Sun
     float to_cd_m2 = 0.0f;                          // the table's values (per unit solar irradiance) to cd/m^2
+    // The moonlit sky (common/atmosphere/moonlit_sky.hpp): the Moon's table (null when its light is off), its
+    // zenith cosine on the tables' grid, its direction (unit, camera -> Moon) and its luminous
+    // irradiance over the Sun's.
+    GpuSkyViewTable* moon_table = nullptr;
+    float moon_mu = 0.0f;
+    glm::vec3 moon_world{0.0f, 0.0f, 1.0f};
+    float moon_ratio = 0.0f;
 };
 
 // Who knows the sky: the atmosphere pass (AtmospherePass::star_sky).

@@ -47,15 +47,30 @@ glm::vec3 StarSkyWeights::on_grid(const glm::vec3& unit) {
 }
 
 bool StarSkyWeights::update(const StarSky& sky, int star_count) {
-    const glm::vec3 c = on_grid(sky.center_dir_world), s = on_grid(sky.sun_world);
-    const std::array<float, 10> key{
-        sky.table_in.x, sky.table_in.y, c.x, c.y, c.z, s.x, s.y, s.z, sky.to_cd_m2, static_cast<float>(star_count)};
+    const glm::vec3 c = on_grid(sky.center_dir_world), s = on_grid(sky.sun_world), m = on_grid(sky.moon_world);
+    const float moon_ratio = sky.moon_table ? sky.moon_ratio : 0.0f;
+    const std::array<float, 15> key{sky.table_in.x,
+                                    sky.table_in.y,
+                                    c.x,
+                                    c.y,
+                                    c.z,
+                                    s.x,
+                                    s.y,
+                                    s.z,
+                                    sky.to_cd_m2,
+                                    static_cast<float>(star_count),
+                                    sky.moon_mu,
+                                    m.x,
+                                    m.y,
+                                    m.z,
+                                    moon_ratio};
     if (valid_ && key == key_) return false;
     const DrawTargetRestorer restore;
     fbo_.bind();
     glDisable(GL_BLEND);
     program_.use();
     set_uniforms(sky, c, s, star_count);
+    set_moon_uniforms(sky, m);
     const GLuint none[4] = {0, 1, 0, 0};
     glNamedBufferSubData(draw_command_, 0, sizeof none, none);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, draw_command_);
@@ -91,6 +106,15 @@ void StarSkyWeights::set_uniforms(const StarSky& sky, const glm::vec3& center_di
     program_.set("u_sky_center_dir", center_dir);
     program_.set("u_sky_sun", sun);
     program_.set("u_sky_to_cd_m2", sky.to_cd_m2);
+}
+
+void StarSkyWeights::set_moon_uniforms(const StarSky& sky, const glm::vec3& moon) {
+    program_.set("u_moon_ratio", sky.moon_table ? sky.moon_ratio : 0.0f);
+    if (!sky.moon_table) return;
+    sky.moon_table->bind(4);
+    program_.set("u_moon_phased", 4);
+    program_.set("u_moon_mie", 5);
+    program_.set("u_moon", moon);
 }
 
 }  // namespace cupola

@@ -9,9 +9,10 @@
 //
 // The weights are a pure function of their inputs, which come from the snapshot: the sky-view
 // table's (camera distance, Sun zenith cosine on its grid) and the camera -> centre and Sun
-// directions, rounded to a grid of 2^-14 per component (0.0035 degrees) before use. They are
-// re-rendered only when one of these changes; with time at the real rate, a few times a second.
-// Every channel computes the same weights in the same frame, whatever frames it rendered before.
+// directions, and the Moon's (its table's zenith cosine, its direction and light), rounded to a grid of 2^-14 per
+// component (0.0035 degrees) before use. They are re-rendered only when one of these changes; with time at the real
+// rate, a few times a second. Every channel computes the same weights in the same frame, whatever frames it rendered
+// before.
 #include <array>
 #include <vector>
 
@@ -48,12 +49,13 @@ public:
 
 private:
     void set_uniforms(const StarSky& sky, const glm::vec3& center_dir, const glm::vec3& sun, int star_count);
+    void set_moon_uniforms(const StarSky& sky, const glm::vec3& moon);
     GlTexture stars_, weights_;
     GlFramebuffer fbo_;
     GlProgram program_;
     GlEmptyVertexArray vao_;
     GLuint buffer_ = 0, draw_command_ = 0;
-    std::array<float, 10> key_{};
+    std::array<float, 15> key_{};
     bool valid_ = false;
     long renders_ = 0;
 };
