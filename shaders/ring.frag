@@ -4,7 +4,7 @@
 // lights or glows through from the other (shared/ring_photometry.glsl), less where the planet hides
 // the Sun. Whatever lies behind shows through by the slab's transmission: premultiplied colour,
 // alpha = 1 - transmission. Where the planet is nearer than the plane along the ray, nothing is
-// drawn (the rings' far side behind the globe). Lengths in planet radii from its centre, channel
+// drawn (the rings' far side behind the globe), but for the part of a limb pixel the globe leaves. Lengths in planet radii from its centre, channel
 // frame; the planet is the unit sphere after u_to_sphere (its stretched frame). RING_AFTER_SKY:
 // the sky was drawn first, and the rings take the air in front of them (through_the_air).
 uniform vec4 u_tangents;
@@ -18,6 +18,7 @@ uniform sampler2D u_profile;    // (normal optical depth, relative albedo) by ra
 uniform vec2 u_profile_map;     // s = r * x + y
 uniform float u_profile_texels;
 uniform vec3 u_lit;             // tint * phase_albedo / 4 * E_sun / pi * disc weight (I/F -> radiance, times varpi0 P / 4)
+uniform int u_limb_aa;          // 1: the globe is a small disc, its limb antialiased (body.frag's u_limb_aa)
 
 #if RING_AFTER_SKY
 uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
@@ -52,8 +53,15 @@ void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
     float t = ring_plane_hit(u_camera, v, u_normal);
     if (t <= 0.0) discard;
-    float t_planet = ray_unit_sphere_entry(u_to_sphere * u_camera, u_to_sphere * v);
-    if (t_planet > 0.0 && t_planet < t) discard;
+    // The globe in front: where the ring plane lies beyond the ray's closest approach to the
+    // globe's centre, the globe covers the pixel as body.frag's limb covers it (antialiased for a
+    // small disc), and the rings show on the rest (the limb of a small globe would otherwise cut
+    // them a whole pixel at a time).
+    vec3 cs = u_to_sphere * u_camera, vs = u_to_sphere * v;
+    float rho = length(cross(cs, vs)) / length(vs);  // the ray's distance from the centre: 1 on the limb
+    float globe = u_limb_aa == 0 ? (rho < 1.0 ? 1.0 : 0.0) : clamp((1.0 - rho) / max(fwidth(rho), 1e-6) + 0.5, 0.0, 1.0);
+    float shown = t > -dot(cs, vs) / dot(vs, vs) ? 1.0 - globe : 1.0;
+    if (shown <= 0.0) discard;
     vec3 q = u_camera + t * v;
     float s = length(q) * u_profile_map.x + u_profile_map.y;
     if (s < 0.0 || s > 1.0) discard;
@@ -69,5 +77,5 @@ void main() {
 #if RING_AFTER_SKY
     radiance = through_the_air(v, radiance, blocked);
 #endif
-    frag_color = vec4(radiance, blocked);
+    frag_color = shown * vec4(radiance, blocked);
 }

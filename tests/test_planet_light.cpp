@@ -107,6 +107,17 @@ TEST(PlanetMagnitude, CurvesAtKnownPointsAndPastTheirFits) {
     EXPECT_GT(v("jupiter", 170.0), v("jupiter", 130.0) + 2.0);
     EXPECT_TRUE(std::isfinite(v("neptune", 180.0)));
     EXPECT_FALSE(planet_magnitude_v("pluto", {}).has_value());
+    // Saturn with its rings (equation 10) at an opposition with the rings wide open (r 9.5, Delta
+    // 8.5 AU, 26.7 deg): -8.914 - (1.825 + 0.378) sin(26.7 deg) + 5 log10(80.75) = -0.369; edge-on it
+    // is never fainter than the globe alone; past 6.5 deg it follows the globe's curve.
+    PlanetGeometry open{9.5, 8.5, 0.0, 26.7, 26.7};
+    EXPECT_NEAR(saturn_with_rings_magnitude_v(open), -0.369, 0.002);
+    PlanetGeometry edge_on{9.5, 8.5, 4.0, 0.0, 0.0};
+    EXPECT_EQ(saturn_with_rings_magnitude_v(edge_on), *planet_magnitude_v("saturn", edge_on));
+    PlanetGeometry at_fit{9.5, 8.5, 6.5, 20.0, 20.0}, past_fit = at_fit;
+    past_fit.phase_deg = 30.0;
+    EXPECT_NEAR(saturn_with_rings_magnitude_v(past_fit) - saturn_with_rings_magnitude_v(at_fit),
+                *planet_magnitude_v("saturn", past_fit) - *planet_magnitude_v("saturn", at_fit), 1e-9);
     EXPECT_NEAR(lambert_phase(0.0), 1.0, 1e-15);
     EXPECT_NEAR(lambert_phase(glm::radians(90.0)), 1.0 / std::numbers::pi, 1e-15);
 }

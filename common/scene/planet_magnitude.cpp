@@ -116,4 +116,18 @@ std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, do
     return size * size * std::pow(10.0, -0.4 * (*planet_magnitude_v(planet, g) - kSunMagnitudeV));
 }
 
+double saturn_with_rings_magnitude_v(const PlanetGeometry& g) {
+    const double fit = std::clamp(g.phase_deg, 0.0, 6.5);
+    const double sin_b = std::sin(glm::radians(std::min(std::abs(g.sub_observer_latitude_deg), 27.0)));
+    const double together = -8.914 - 1.825 * sin_b + 0.026 * fit - 0.378 * sin_b * std::exp(-2.25 * fit);
+    // Past the fit the whole follows the globe's curve from there (the distances cancel).
+    PlanetGeometry at_fit = g;
+    at_fit.phase_deg = fit;
+    const double globe_past_fit = *planet_magnitude_v("saturn", g) - *planet_magnitude_v("saturn", at_fit);
+    // Nearly edge-on the fit gives less light than the globe's own curve (it does not meet it at
+    // b = 0): the rings never darken the planet.
+    const double globe = *planet_magnitude_v("saturn", g);
+    return std::min(together + 5.0 * std::log10(g.sun_distance_au * g.observer_distance_au) + globe_past_fit, globe);
+}
+
 }  // namespace cupola

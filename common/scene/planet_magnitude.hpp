@@ -3,7 +3,8 @@
 // 2018 ("Computing apparent planetary magnitudes for The Astronomical Almanac", Astronomy and
 // Computing 25, pp. 10-24), equations 2-17:
 //   Mercury (2), Venus (3, 4), Earth (5), Mars (6, 7, without the rotation and season tables of
-//   +-0.06 mag), Jupiter (8, 9), Saturn's globe alone (11, 12: the rings are not drawn),
+//   +-0.06 mag), Jupiter (8, 9), Saturn's globe alone (11, 12: what its drawn disc follows) and
+//   its globe and rings together (10: what Saturn as a point carries),
 //   Uranus (13, 14, with its sub-latitude term), Neptune (16, 17, after 2000).
 // The Moon: Allen's phase law (Allen 1973, as Krisciunas & Schaefer 1991 give it in
 // their equation 9), V(1, a) = 0.21 + 0.026 a + 4e-9 a^4, a in degrees, up to 150 degrees.
@@ -52,6 +53,13 @@ std::optional<double> planet_magnitude_v(const std::string& planet, const Planet
 // irradiance at 1 AU: the curve's magnitude as a flux relative to the Sun's, for a body of
 // radius_m (the curve's body scaled by the square of the ratio); none without a curve.
 std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g);
+
+// Saturn's globe and rings together (Mallama & Hilton 2018, equation 10, fitted for phase angles
+// up to 6.5 deg and the rings opened by up to 27 deg): V(1, a) = -8.914 - 1.825 sin b + 0.026 a
+// - 0.378 sin b exp(-2.25 a), b = |g.sub_observer_latitude_deg| (clamped to 27 deg). Past 6.5 deg the
+// rings keep the share of the light they have there, and the globe follows its own curve. Never
+// fainter than the globe alone (nearly edge-on, below b = 4 deg, the fit is).
+double saturn_with_rings_magnitude_v(const PlanetGeometry& g);
 
 // A Lambert sphere's phase function (sin a + (pi - a) cos a) / pi: 1 at full phase.
 double lambert_phase(double phase_rad);

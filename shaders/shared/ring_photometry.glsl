@@ -52,20 +52,6 @@ float disc_fraction_past_edge(float x) {
     return clamp(0.5 + (c * sqrt(1.0 - c * c) + asin(c)) / 3.14159265358979, 0.0, 1.0);
 }
 
-// The nearest ray parameter t > 0 at which origin + t dir enters the unit sphere; -1 if none.
-// dir need not be unit.
-float ray_unit_sphere_entry(vec3 origin, vec3 dir) {
-    float a = dot(dir, dir);
-    float b = dot(origin, dir);
-    float c = dot(origin, origin) - 1.0;
-    float disc = b * b - a * c;
-    if (disc < 0.0 || a <= 0.0) {
-        return -1.0;
-    }
-    float t = (-b - sqrt(disc)) / a;
-    return t > 0.0 ? t : -1.0;
-}
-
 // How much of the Sun's disc (angular radius sun_radius_rad) a point of the rings sees past its
 // planet, in the planet's stretched frame (where the spheroid is the unit sphere): the point p and
 // the direction to the Sun s (not unit after stretching). The planet's limb is taken as a straight

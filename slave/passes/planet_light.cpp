@@ -63,6 +63,16 @@ std::optional<double> curve_flux(const BodyConfig& b, const PlanetGeometry& g, c
     return curve_irradiance(b, g, in.sun_irradiance_1au);
 }
 
+// Saturn drawn with its rings: as a point it carries the globe's and the rings' light together
+// (saturn_with_rings_magnitude_v), for the body's own size; the disc stays the globe's curve and
+// the rings draw their own light.
+bool point_carries_rings(const BodyConfig& b) { return b.rings.present && b.ephemeris == "saturn"; }
+double globe_and_rings_flux(const BodyConfig& b, const PlanetGeometry& g, const PlanetLightInputs& in) {
+    const double size = b.radius_m / find_phase_curve(b.ephemeris)->radius_m;
+    return size * size * in.sun_irradiance_1au *
+           std::pow(10.0, -0.4 * (saturn_with_rings_magnitude_v(g) - kSunMagnitudeV));
+}
+
 // The measured curve over the drawn model's light: what scales the disc's radiance. Past the
 // curve's data it goes on as a Lambert sphere, as the model does there (the lunar-Lambert L is 0
 // from 104 degrees on), so the scale stays the one at the curve's last phase angle (the ratio of
@@ -171,7 +181,7 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
     light.flux = model;
     light.limb_weight = limb_weight_at(b, glm::radians(g.phase_deg));
     if (const auto curve = curve_flux(b, g, in)) {
-        light.flux = *curve;
+        light.flux = point_carries_rings(b) ? globe_and_rings_flux(b, g, in) : *curve;
         light.disc_scale = disc_scale_for(b, s, g, in, model);
     }
     set_planetshine(light, b, s, g, in);

@@ -7,7 +7,8 @@
 // The surface: Lambertian, or lunar-Lambert (BodyConfig::photometry; the Moon), whose phase
 // function is the measured curve over the model's disc integral.
 // The light: for a planet with a measured phase curve (scene/planet_magnitude, Mallama & Hilton
-// 2018) its V magnitude, as a flux in scene units: the Sun's irradiance at 1 AU times
+// 2018) its V magnitude (for Saturn with its rings drawn, the globe's and the rings' together; its
+// disc the globe's alone, the rings drawing their own), as a flux in scene units: the Sun's irradiance at 1 AU times
 // 10^(-0.4 (V - V_sun)). Otherwise what the drawn disc gives: a Lambert sphere of albedo times its
 // map's mean, F_L = 2/3 A E (R / Delta)^2 Phi_L(alpha), times the projected area of an oblate
 // spheroid over pi a^2, times how the map's lit and visible part compares with its mean
