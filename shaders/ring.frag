@@ -4,8 +4,9 @@
 // lights or glows through from the other (shared/ring_photometry.glsl), less where the planet hides
 // the Sun. Whatever lies behind shows through by the slab's transmission: premultiplied colour,
 // alpha = 1 - transmission. Where the planet is nearer than the plane along the ray, nothing is
-// drawn (the rings' far side behind the globe), but for the part of a limb pixel the globe leaves. Lengths in planet radii from its centre, channel
-// frame; the planet is the unit sphere after u_to_sphere (its stretched frame). RING_AFTER_SKY:
+// drawn (the rings' far side behind the globe), but for the part of a limb pixel the globe leaves.
+// Lengths in planet radii from its centre, channel frame; the planet is the unit sphere after
+// u_to_sphere (its stretched frame). RING_AFTER_SKY:
 // the sky was drawn first, and the rings take the air in front of them (through_the_air).
 uniform vec4 u_tangents;
 uniform vec2 u_size;

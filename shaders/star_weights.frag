@@ -16,8 +16,9 @@ uniform float u_sky_d_m;        // camera -> planet centre, metres
 uniform vec3 u_sky_center_dir;  // unit, world frame: camera -> planet centre
 uniform vec3 u_sky_sun;         // unit, world frame: planet centre -> Sun
 uniform float u_sky_to_cd_m2;   // the table's values to cd/m^2
-uniform sampler2D u_moon_phased;  // the Moon's table (star_moon_sky), when u_moon_ratio > 0
-uniform sampler2D u_moon_mie;
+uniform sampler2D u_moon_phased;  // the Moon's sky-view table (common/atmosphere/moonlit_sky.hpp), when
+uniform sampler2D u_moon_mie;     // u_moon_ratio > 0
+uniform sampler2D u_moon_third;
 uniform vec3 u_moon;              // unit, world frame: camera -> Moon
 uniform float u_moon_ratio;       // its luminous irradiance over the Sun's; 0: no moonlit sky
 uniform int u_star_count;       // the stars to judge: those the magnitude limits leave, a prefix
@@ -36,9 +37,12 @@ void main() {
     vec4 star = texelFetch(u_stars, ivec2(gl_FragCoord.xy), 0);
     vec4 light = star_sky_light(u_atm, u_sky_phased, u_sky_mie, u_sky_third, u_sky_size, u_sky_d_m, star.xyz,
                                 u_sky_center_dir, u_sky_sun);
+    // The Moon's sky behind the star: the same look-up in the Moon's own table, seen against the
+    // Moon, times its luminous irradiance over the Sun's (0 where the ray meets the ground).
     if (u_moon_ratio > 0.0 && light.w >= 0.0)
-        light.w += star_moon_sky(u_atm, u_moon_phased, u_moon_mie, u_sky_size, u_sky_d_m, star.xyz, u_sky_center_dir,
-                                 u_moon, u_moon_ratio);
+        light.w += u_moon_ratio * max(star_sky_light(u_atm, u_moon_phased, u_moon_mie, u_moon_third, u_sky_size,
+                                                     u_sky_d_m, star.xyz, u_sky_center_dir, u_moon).w,
+                                      0.0);
     int index = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
     float weight = index < u_star_count ? star_sky_weight(star_sky_behind_of(light), u_sky_to_cd_m2, star.w) : 0.0;
     if (weight > 0.0) atomicMax(u_draw.count, uint(index + 1));

@@ -66,6 +66,7 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
                 dirs.push_back(glm::normalize(to_world * glm::dvec3(x, y, -1.0)));
             }
     }
+    const SkySecondLight second = second_light(snap, *sun_state);  // the same for every atmosphere
     double sum = 0.0;
     for (const auto& body : atmospheres_->bodies()) {
         const BodyState* st = find_body(snap, body->config->id);
@@ -81,7 +82,7 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         const shading::EclipseCasters casters = casting_->casters_for(snap, st->id, glm::dmat3(1.0));
         const double au_over_sun = kAstronomicalUnit_m / glm::length(sun_state->position_m - st->position_m);
         const MoonOnAir moon =
-            moon_on_air(second_light(snap, *sun_state), snap.camera_position_m, st->position_m,
+            moon_on_air(second, snap.camera_position_m, st->position_m,
                         glm::normalize(sun_state->position_m - st->position_m), au_over_sun * au_over_sun, body->model);
         for (const glm::dvec3& v : dirs) {
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),

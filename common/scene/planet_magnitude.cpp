@@ -108,12 +108,13 @@ PlanetGeometry planet_geometry(const glm::dvec3& body_m, const glm::dquat& orien
     return g;
 }
 
-std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m,
-                                                   const PlanetGeometry& g) {
+std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g,
+                                                   bool with_rings) {
     const PhaseCurve* curve = find_phase_curve(planet);
     if (!curve) return std::nullopt;
     const double size = radius_m / curve->radius_m;
-    return size * size * std::pow(10.0, -0.4 * (*planet_magnitude_v(planet, g) - kSunMagnitudeV));
+    const double v = with_rings ? saturn_with_rings_magnitude_v(g) : *planet_magnitude_v(planet, g);
+    return size * size * std::pow(10.0, -0.4 * (v - kSunMagnitudeV));
 }
 
 double saturn_with_rings_magnitude_v(const PlanetGeometry& g) {
@@ -123,10 +124,10 @@ double saturn_with_rings_magnitude_v(const PlanetGeometry& g) {
     // Past the fit the whole follows the globe's curve from there (the distances cancel).
     PlanetGeometry at_fit = g;
     at_fit.phase_deg = fit;
-    const double globe_past_fit = *planet_magnitude_v("saturn", g) - *planet_magnitude_v("saturn", at_fit);
+    const double globe = *planet_magnitude_v("saturn", g),
+                 globe_past_fit = globe - *planet_magnitude_v("saturn", at_fit);
     // Nearly edge-on the fit gives less light than the globe's own curve (it does not meet it at
     // b = 0): the rings never darken the planet.
-    const double globe = *planet_magnitude_v("saturn", g);
     return std::min(together + 5.0 * std::log10(g.sun_distance_au * g.observer_distance_au) + globe_past_fit, globe);
 }
 

@@ -51,8 +51,10 @@ std::optional<double> planet_magnitude_v(const std::string& planet, const Planet
 
 // The irradiance a body with a measured phase curve sends to its observer, over the Sun's
 // irradiance at 1 AU: the curve's magnitude as a flux relative to the Sun's, for a body of
-// radius_m (the curve's body scaled by the square of the ratio); none without a curve.
-std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g);
+// radius_m (the curve's body scaled by the square of the ratio); none without a curve. with_rings:
+// Saturn's globe and rings together (saturn_with_rings_magnitude_v).
+std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g,
+                                                   bool with_rings = false);
 
 // Saturn's globe and rings together (Mallama & Hilton 2018, equation 10, fitted for phase angles
 // up to 6.5 deg and the rings opened by up to 27 deg): V(1, a) = -8.914 - 1.825 sin b + 0.026 a

@@ -46,18 +46,6 @@ vec4 star_sky_light(AtmosphereParams a, sampler2D t0, sampler2D t1, sampler2D t2
     return vec4(vec3(textureLod(t2, uv, 0.0)), rec709_luminance(sky));
 }
 
-// The Moon's sky behind a star, in star_sky_light's units (its w): the Moon's own sky-view table
-// (parts t0, t1; common/atmosphere/moonlit_sky.hpp) at the star's direction seen against the Moon
-// (moon: unit, camera -> Moon), times the Moon's luminous irradiance over the Sun's. 0 where the
-// ray misses the air or meets the ground.
-float star_moon_sky(AtmosphereParams a, sampler2D t0, sampler2D t1, vec2 size, float d_m, vec3 v, vec3 c_hat,
-                    vec3 moon, float ratio) {
-    AtmosphereRayStart st = atm_ray_start(a, d_m, v, c_hat, moon);
-    if (!st.valid || atm_ray_hits_ground(a, st.r_m, st.mu)) return 0.0;
-    vec2 uv = atm_sky_view_pixel_uv(a, d_m, v, c_hat, moon, st, false, size);
-    return ratio * rec709_luminance(max(atm_sky_view_inscatter(a, t0, t1, uv, st.nu), vec3(0.0)));
-}
-
 // What the eye's threshold takes of star_sky_light: (the sky's luminance behind the star, the
 // luminance transmittance in front of it); x < 0 where the ray misses the air.
 vec2 star_sky_behind_of(vec4 light) {

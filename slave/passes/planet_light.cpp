@@ -52,8 +52,9 @@ double model_disc_flux(const BodyConfig& b, const BodyState& s, const PlanetGeom
 
 // The irradiance a body's measured phase curve gives at its observer (g), if it has one, for the
 // body's own size: the curve's magnitude, a flux relative to the Sun's at 1 AU.
-std::optional<double> curve_irradiance(const BodyConfig& b, const PlanetGeometry& g, double sun_irradiance_1au) {
-    const std::optional<double> ratio = phase_curve_irradiance_ratio(b.ephemeris, b.radius_m, g);
+std::optional<double> curve_irradiance(const BodyConfig& b, const PlanetGeometry& g, double sun_irradiance_1au,
+                                       bool with_rings = false) {
+    const std::optional<double> ratio = phase_curve_irradiance_ratio(b.ephemeris, b.radius_m, g, with_rings);
     if (!ratio) return std::nullopt;
     return *ratio * sun_irradiance_1au;
 }
@@ -64,14 +65,8 @@ std::optional<double> curve_flux(const BodyConfig& b, const PlanetGeometry& g, c
 }
 
 // Saturn drawn with its rings: as a point it carries the globe's and the rings' light together
-// (saturn_with_rings_magnitude_v), for the body's own size; the disc stays the globe's curve and
-// the rings draw their own light.
+// (saturn_with_rings_magnitude_v); the disc stays the globe's curve and the rings draw their own light.
 bool point_carries_rings(const BodyConfig& b) { return b.rings.present && b.ephemeris == "saturn"; }
-double globe_and_rings_flux(const BodyConfig& b, const PlanetGeometry& g, const PlanetLightInputs& in) {
-    const double size = b.radius_m / find_phase_curve(b.ephemeris)->radius_m;
-    return size * size * in.sun_irradiance_1au *
-           std::pow(10.0, -0.4 * (saturn_with_rings_magnitude_v(g) - kSunMagnitudeV));
-}
 
 // The measured curve over the drawn model's light: what scales the disc's radiance. Past the
 // curve's data it goes on as a Lambert sphere, as the model does there (the lunar-Lambert L is 0
@@ -181,7 +176,7 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
     light.flux = model;
     light.limb_weight = limb_weight_at(b, glm::radians(g.phase_deg));
     if (const auto curve = curve_flux(b, g, in)) {
-        light.flux = point_carries_rings(b) ? globe_and_rings_flux(b, g, in) : *curve;
+        light.flux = point_carries_rings(b) ? *curve_irradiance(b, g, in.sun_irradiance_1au, true) : *curve;
         light.disc_scale = disc_scale_for(b, s, g, in, model);
     }
     set_planetshine(light, b, s, g, in);

@@ -114,6 +114,7 @@ void StarSkyWeights::set_moon_uniforms(const StarSky& sky, const glm::vec3& moon
     sky.moon_table->bind(4);
     program_.set("u_moon_phased", 4);
     program_.set("u_moon_mie", 5);
+    program_.set("u_moon_third", 6);
     program_.set("u_moon", moon);
 }
 
