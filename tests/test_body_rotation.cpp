@@ -13,11 +13,14 @@
 #include <erfa.h>
 #include <erfam.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "scene/body_rotation.hpp"
 #include "scene/ephemeris.hpp"
+#include "scene/satellite_orbits.hpp"
 #include "support/test_support.hpp"
 
 using namespace cupola;
@@ -145,4 +148,34 @@ TEST(BodyRotation, PolesAndSpinSenses) {
     }
     EXPECT_FALSE(has_iau_rotation("earth"));  // the Earth turns by ERFA (scene/ephemeris)
     EXPECT_THROW(iau_rotation_elements("vulcan", t), std::invalid_argument);
+}
+
+// Titan's orbit (fitted mean elements, scene/satellite_orbits) against its rotation (the IAU's
+// prime meridian, Archinal et al. 2018), which owe each other nothing. Titan turns synchronously:
+// over each orbit the sub-Saturn point swings about a fixed longitude by the equation of the
+// centre (2e = 3.3 deg). Where that middle lies is the IAU's convention (2.1 deg east here, and
+// within 2.5 deg of the prime meridian); that it stays put from 1900 to 2100 says the orbit's mean
+// longitude keeps time with the rotation. A drift of 0.5 deg of orbit would be 2" from the Earth.
+TEST(BodyRotation, TitanKeepsItsFaceToSaturnFrom1900To2100) {
+    double middle_2000 = 0.0, worst_drift = 0.0;
+    for (int year : {2000, 1900, 1925, 1950, 1975, 2025, 2050, 2075, 2100}) {
+        double lo = 360.0, hi = -360.0;
+        for (int k = 0; k < 200; ++k) {  // one orbit, 16 days
+            const double d = (year - 2000) * 365.25 + k * 0.08;
+            const glm::dvec2 sub_saturn =
+                body_longitude_latitude_deg(body_to_icrs(iau_rotation_elements("titan", d * ERFA_DAYSEC)),
+                                            glm::normalize(-satellite_offset_m("titan", d)));
+            lo = std::min(lo, wrap180(sub_saturn.x));
+            hi = std::max(hi, wrap180(sub_saturn.x));
+            EXPECT_LT(std::abs(sub_saturn.y), 1.0) << year;
+        }
+        const double middle = 0.5 * (lo + hi);
+        if (year == 2000) middle_2000 = middle;
+        worst_drift = std::max(worst_drift, std::abs(middle - middle_2000));
+        EXPECT_LT(std::abs(middle), 2.5) << year;
+        EXPECT_NEAR(0.5 * (hi - lo), 2.0 * 0.0287 * 180.0 / 3.14159265358979, 0.1) << year;
+    }
+    EXPECT_LT(worst_drift, 0.5);
+    std::printf("Titan's sub-Saturn point: middle %.2f deg east in 2000, drifting %.2f deg over 1900-2100\n",
+                middle_2000, worst_drift);
 }

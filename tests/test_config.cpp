@@ -52,9 +52,9 @@ TEST(Config, ShippedConfigsLoad) {
         ClusterConfig c = load_cluster_config(f);
         EXPECT_FALSE(c.channels.empty()) << f;
         SceneConfig s = load_scene_config(c.scene_file);
-        // The Sun, the Earth and the Moon, or the whole solar system with Jupiter's four large moons
+        // The Sun, the Earth and the Moon, or the whole solar system with Jupiter's four large moons and Titan
         // (configs/scenes/solar-system.json).
-        EXPECT_TRUE(s.bodies.size() == 3u || s.bodies.size() == 15u) << f;
+        EXPECT_TRUE(s.bodies.size() == 3u || s.bodies.size() == 16u) << f;
         EXPECT_NE(s.find("earth"), nullptr) << f;
         const ShowScript show = ShowScript::load(c.show_file, s);
         EXPECT_FALSE(show.keyframes().empty()) << f;

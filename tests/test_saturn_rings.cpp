@@ -563,7 +563,9 @@ TEST(SaturnRings, SaturnApproachedWithItsRingsFollowsItsMagnitudeAcrossTheHandov
                 planet_geometry(glm::dvec3(0.0), glm::dquat(1, 0, 0, 0), s.bodies[0].position_m, s.camera_position_m);
             const double expected = e_1au * std::pow(10.0, -0.4 * (saturn_with_rings_magnitude_v(g) - kSunMagnitudeV));
             const double ratio = test::frame_flux(renderer.render(s), ch) / expected;
-            if (i == 0) EXPECT_NEAR(ratio, 1.0, 0.01) << "the point, at " << beta << " deg";
+            if (i == 0) {
+                EXPECT_NEAR(ratio, 1.0, 0.01) << "the point, at " << beta << " deg";
+            }
             if (i > 0) worst_step = std::max(worst_step, std::abs(ratio / previous - 1.0));
             worst_level = std::max(worst_level, std::abs(ratio - 1.0));
             if (std::getenv("CUPOLA_TEST_VERBOSE"))

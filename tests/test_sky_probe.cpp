@@ -91,7 +91,7 @@ TEST(SkyProbe, AnswersForEveryBodyOfTheSolarSystemScene) {
         bodies.push_back(b["ephemeris"]);
         queries += "position " + bodies.back() + " 2026-12-03T20:00:00Z\\n";
     }
-    ASSERT_EQ(bodies.size(), 14u);
+    ASSERT_EQ(bodies.size(), 15u);
     const auto [status, out] = run("printf '" + queries + "' | " + kSky);
     ASSERT_EQ(status, 0) << out;
     const auto j = json_lines(out);

@@ -42,8 +42,8 @@ struct BodyConfig {
     uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
     BodyKind kind = BodyKind::Planet;
-    std::string
-        ephemeris;  // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto", "io" ... "callisto"
+    std::string ephemeris;    // analytic model: "sun", "earth", "moon", "mercury" ... "neptune", "pluto", "io" ...
+                              // "callisto", "titan"
     double radius_m = 1.0;    // equatorial radius (the mean one for a sphere)
     double flattening = 0.0;  // (a - c) / a: the polar radius is radius_m * (1 - flattening)
     std::string texture;      // resolved image path, or "generated:<name>"

@@ -26,7 +26,7 @@ struct RotationElements {
 };
 
 // Whether iau_rotation_elements knows the body ("sun", "mercury" ... "neptune", "pluto", "moon", "io",
-// "europa", "ganymede", "callisto").
+// "europa", "ganymede", "callisto", "titan").
 bool has_iau_rotation(const std::string& body);
 
 // The elements at t_tdb_s seconds from J2000 (TT may stand for TDB). The caller applies the light

@@ -20,7 +20,7 @@
 namespace cupola {
 
 // body.ephemeris is one of "sun", "earth", "moon", "mercury", ..., "neptune", "pluto", "io", "europa",
-// "ganymede", "callisto"; t in seconds since
+// "ganymede", "callisto", "titan"; t in seconds since
 // J2000 TT. Throws std::invalid_argument for another name.
 BodyState body_state(const BodyConfig& body, double t_tt_s);
 

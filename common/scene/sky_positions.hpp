@@ -29,7 +29,7 @@ struct SkyPosition {
 };
 
 // The body names understood below: sun, moon, mercury, venus, mars, jupiter, saturn, uranus, neptune,
-// pluto, io, europa, ganymede, callisto.
+// pluto, io, europa, ganymede, callisto, titan.
 const std::vector<std::string>& sky_body_names();
 
 // The apparent geocentric vector alone (what searches need). Throws std::invalid_argument naming
