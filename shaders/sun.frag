@@ -21,6 +21,8 @@ uniform vec4 u_disc_distances_m; // (d, R, d - R, d + R) of the disc in metres, 
 uniform vec3 u_radiance;       // disc-centre radiance times tint
 uniform float u_limb_u;
 uniform float u_corona;        // 0: no corona
+uniform int u_limb_aa;         // 1: a small disc (PlanetLight::small_disc), its limb antialiased
+uniform float u_disc_weight;   // the disc's share of the light (the rest is a point); not the corona's
 #if SUN_AFTER_SKY
 uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
 uniform SkyInFront u_sky;
@@ -49,18 +51,30 @@ float corona_profile(float rho) {
     return 1e-6 * (0.0532 * pow(rho, -2.5) + 1.425 * pow(rho, -7.0) + 2.565 * pow(rho, -17.0));
 }
 
+// A small disc's limb pixel: its coverage by the disc (from how far its centre lies inside the
+// limb, rho = 1, in units of rho's change across the pixel) and mu in the middle of the covered
+// part, so that a disc a few pixels across keeps its light (as body.frag does for the planets).
+vec2 small_disc_coverage_mu(float rho, float rho_step) {
+    float coverage = clamp((1.0 - rho) / max(rho_step, 1e-6) + 0.5, 0.0, 1.0);
+    float rho_shaded = min(rho, 1.0 - 0.5 * coverage * rho_step);
+    return vec2(coverage, sqrt(max(1.0 - rho_shaded * rho_shaded, 0.0)));
+}
+
 void main() {
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+    float theta = angle_between_units(v, u_center_dir);
+    float rho = sin(min(theta, 1.5707963)) / u_disc_sin_alpha;
+    float rho_step = fwidth(rho);  // in uniform control flow
     vec4 hit = sphere_hit(v, u_center_dir, u_disc_sin_alpha);
-    if (hit.w >= 0.0) {
-        frag_color = added(v, u_radiance * limb_darkening(hit.w, u_limb_u));
+    vec2 cover = u_limb_aa == 0 ? vec2(hit.w >= 0.0 ? 1.0 : 0.0, hit.w) : small_disc_coverage_mu(rho, rho_step);
+    if (cover.x > 0.0) {
+        frag_color = added(v, cover.x * u_disc_weight * u_radiance * limb_darkening(cover.y, u_limb_u));
 #if !SUN_AFTER_SKY
-        frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, hit.w, u_disc_distances_m));
+        float mu_hit = max(hit.w, 0.0);  // a limb pixel whose centre misses: the distance at the limb
+        frag_geometry = vec4(0.0, 0.0, 0.0, sphere_hit_distance(v, u_center_dir, mu_hit, u_disc_distances_m));
 #endif
         return;
     }
-    float theta = angle_between_units(v, u_center_dir);
-    float rho = sin(min(theta, 1.5707963)) / u_disc_sin_alpha;
     if (u_corona <= 0.0 || theta >= 1.5707963 || rho >= CORONA_EXTENT) {
         discard;
     }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 #include "eclipse/shadow_casters.hpp"
@@ -182,6 +183,19 @@ void record_pass(FrameTimings& t, const std::string& name, TimingClock::time_poi
         }
     t.passes_ms.emplace_back(name, ms);
 }
+
+// The part of a star's disc that the bodies nearer to the camera leave visible.
+double star_visible_fraction_in(const FrameContext& f, const FrameBody& star) {
+    const auto disc = [](const SphereView& s) {
+        return SkyDisc{s.center_dir, s.sin_alpha >= 1.0 ? std::numbers::pi : sphere_angular_radius_rad(s.sin_alpha)};
+    };
+    std::vector<SkyDisc> nearer;
+    for (const FrameBody& o : f.far_to_near)
+        if (o.body->kind != BodyKind::Star && o.sphere.distance_m < star.sphere.distance_m)
+            nearer.push_back(disc(o.sphere));
+    return star_visible_fraction(disc(star.sphere), nearer, star.body->limb_darkening_u);
+}
+
 }  // namespace
 
 // The frame as every pass sees it: the channel's view, the light (the first of the scene's
@@ -222,6 +236,10 @@ void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
     in.psf_sigma_rad = psf_sigma_rad;
     in.handover_start_rad = point_to_disc_start;
     for (FrameBody& it : f.far_to_near) {
+        if (it.body->kind == BodyKind::Star) {
+            it.light = star_light(*it.body, *it.state, in);
+            it.light.flux *= star_visible_fraction_in(f, it);
+        }
         if (it.body->kind == BodyKind::Star || it.body->atmosphere.present) continue;
         in.map_mean_rgb = painter->bodies().map_mean_rgb(it.body->id);
         in.map_grid = painter->bodies().map_grid(it.body->id);

@@ -46,10 +46,12 @@ Image read_frame(const std::string& dir, int frame) {
     return img;
 }
 
-double mean_luminance(const Image& img) {
-    double s = 0.0;
-    for (int i = 0; i < img.width * img.height; ++i) s += luminance(&img.rgba[4 * i]);
-    return s / (img.width * img.height);
+// The brightest pixel's position (x, y).
+glm::ivec2 brightest_pixel(const Image& img) {
+    int best = 0;
+    for (int i = 1; i < img.width * img.height; ++i)
+        if (luminance(&img.rgba[4 * i]) > luminance(&img.rgba[4 * best])) best = i;
+    return {best % img.width, best / img.width};
 }
 
 // Mean luminance of the pixels whose centre lies between r0 and r1 pixels from (cx, cy).
@@ -203,7 +205,13 @@ TEST(EclipseRender, GroundTotalityDarkensTheSkyWithTheVisibleFractionAndShowsThe
 
     const Image sky_off = read_frame(out + "/sky", 0), sky_90 = read_frame(out + "/sky", 1),
                 sky_tot = read_frame(out + "/sky", 2);
-    const double l_off = mean_luminance(sky_off), l_90 = mean_luminance(sky_90), l_tot = mean_luminance(sky_tot);
+    // The sky's light: away from the Sun, which in this channel (1.9 degrees a pixel) is a point
+    // carrying its visible part's light, far brighter than the sky around it.
+    const glm::ivec2 sun_px = brightest_pixel(sky_off);
+    const auto sky_luminance = [&](const Image& img) {
+        return ring_luminance(img, sun_px.x + 0.5, sun_px.y + 0.5, 4.0, 2.0 * n);
+    };
+    const double l_off = sky_luminance(sky_off), l_90 = sky_luminance(sky_90), l_tot = sky_luminance(sky_tot);
     std::printf(
         "mean sky luminance: no eclipse %.4g, 90 %% %.4g (ratio %.4f, visible fraction %.4f), totality %.4g "
         "(%.4f of 90 %%)\n",

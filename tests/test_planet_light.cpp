@@ -21,6 +21,7 @@
 #include "scene/planet_magnitude.hpp"
 #include "scene/sky_positions.hpp"
 #include "scene_renderer.hpp"
+#include "shading/shared_shading.hpp"
 #include "support/planet_frames.hpp"
 #include "support/test_support.hpp"
 
@@ -223,8 +224,9 @@ TEST(PlanetLight, APointOutOfViewCostsNoDraw) {
     const double in_view = frame_flux(renderer.render(s), ch);
     EXPECT_EQ(renderer.planet_points_drawn(), 1);
     EXPECT_GT(in_view, 0.0);
-    // Turned 60 degrees away (the channel spans 20 each way): no draw, no light.
-    s.camera_orientation = s.camera_orientation * glm::angleAxis(glm::radians(60.0), glm::dvec3(0, 1, 0));
+    // Turned 60 degrees away (the channel spans 20 each way): no draw, no light. (Turned the other
+    // way, the Sun's point, 101 degrees from the planet, would come within its sprite's reach.)
+    s.camera_orientation = s.camera_orientation * glm::angleAxis(glm::radians(-60.0), glm::dvec3(0, 1, 0));
     EXPECT_EQ(frame_flux(renderer.render(s), ch), 0.0);
     EXPECT_EQ(renderer.planet_points_drawn(), 1);
     // In view again, at an exposure that cannot show its peak (a planet by day): no draw either.
@@ -235,4 +237,114 @@ TEST(PlanetLight, APointOutOfViewCostsNoDraw) {
     s.settings.exposure = 1.0f;
     renderer.render(s);
     EXPECT_EQ(renderer.planet_points_drawn(), 2);
+}
+
+namespace {
+
+// The Sun and, if given, more bodies; no stars brighter than the limit, no corona.
+SceneConfig sun_scene(const std::string& dir, const nlohmann::json& more = nlohmann::json::array()) {
+    nlohmann::json bodies = {{{"name", "sun"},
+                              {"kind", "star"},
+                              {"ephemeris", "sun"},
+                              {"radius_m", 6.957e8},
+                              {"radiance", 5.8e4},
+                              {"corona", 0.0}}};
+    for (const auto& b : more) bodies.push_back(b);
+    const nlohmann::json scene = {
+        {"bodies", bodies},
+        {"stars", {{"catalog", test::source_path("data/stars/bright_stars.csv")}, {"magnitude_limit", -2.0}}}};
+    test::write_text(dir + "/scene.json", scene.dump());
+    return load_scene_config(dir + "/scene.json");
+}
+
+// The Sun at the origin, the camera at d_m along +X (a little above the plane), looking at it.
+Snapshot sun_view(double d_m) {
+    Snapshot s;
+    s.bodies.resize(1);
+    const glm::dvec3 back = glm::normalize(glm::dvec3(1.0, 0.0, 0.02));
+    s.camera_position_m = back * d_m;
+    s.settings.exposure = 0.0f;
+    const glm::dvec3 up(0, 0, 1), right = glm::normalize(glm::cross(up, back));
+    s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
+    return s;
+}
+
+}  // namespace
+
+// The Sun from 0.1 AU (a disc 5.3 degrees across) to 100 AU (19 arcseconds, a sixth of the
+// channel's 0.16-degree pixels): its light is its irradiance at the camera all the way, without a
+// step and without vanishing between pixel centres (the disc alone was point-sampled).
+TEST(PlanetLight, TheSunFromDiscToPointKeepsItsLight) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const SceneConfig scene = sun_scene(test::scratch_dir("planet_light_sun"));
+    const ChannelConfig ch = channel(20, 20, 256);
+    ClusterConfig cluster;
+    cluster.channels.push_back(ch);
+    SceneRenderer renderer(cluster, ch, scene);
+    const double near_m = 0.1 * kAu, far_m = 100.0 * kAu;
+    const int frames = 90;
+    double previous = 0.0, worst_step = 0.0, worst_level = 0.0;
+    for (int i = 0; i < frames; ++i) {
+        const double d_m = near_m * std::pow(far_m / near_m, double(i) / (frames - 1));
+        const Image img = renderer.render(sun_view(d_m));
+        for (const int shown : {0, 8, 12, 16, 20, 40})
+            if (i == shown) maybe_write("sun-" + std::to_string(i), img);
+        const double ratio = frame_flux(img, ch) / atmosphere::sun_irradiance_scene_units(scene.bodies[0], d_m);
+        worst_level = std::max(worst_level, std::abs(ratio - 1.0));
+        EXPECT_NEAR(ratio, 1.0, 0.05) << "frame " << i << ", " << d_m / kAu << " AU";
+        if (i > 0) {
+            worst_step = std::max(worst_step, std::abs(ratio / previous - 1.0));
+            EXPECT_LT(std::abs(ratio / previous - 1.0), 0.02) << "frame " << i << ", " << d_m / kAu << " AU";
+        }
+        previous = ratio;
+    }
+    std::printf("the Sun receding: worst step %.4f, worst level %.4f\n", worst_step, worst_level);
+}
+
+namespace {
+
+// The frame's light with the Sun seen from 1 AU and the scene's dark moon (albedo 0: it adds no
+// light of its own) s Sun radii from the Sun's centre.
+double sun_flux_behind_a_moon(SceneRenderer& renderer, const ChannelConfig& ch, double s) {
+    Snapshot snap = sun_view(kAu);
+    const double alpha = std::asin(6.957e8 / kAu), moon_distance_m = 3.844e8;
+    const glm::dvec3 to_sun = -glm::normalize(snap.camera_position_m);
+    const glm::dvec3 to_moon = glm::angleAxis(s * alpha, glm::dvec3(0, 0, 1)) * to_sun;
+    snap.bodies.resize(2);
+    snap.bodies[1].id = 1;
+    snap.bodies[1].position_m = snap.camera_position_m + to_moon * moon_distance_m;
+    return frame_flux(renderer.render(snap), ch);
+}
+
+}  // namespace
+
+// The Sun as a point (0.27 degrees in 0.16-degree pixels) behind a moon: the point carries the
+// part of the limb-darkened disc the moon leaves (eclipse_visible_exact, the eclipse shadows' own
+// function), not hidden per pixel a second time, so that in totality nothing leaks past the
+// moon's edge and in a partial eclipse the light is the visible part's.
+TEST(PlanetLight, TheSunsPointBehindAMoonCarriesItsDiscsVisiblePart) {
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    EglContext gl(-1);
+    const std::string dir = test::scratch_dir("planet_light_sun_moon");
+    const double a = 1.05, alpha = std::asin(6.957e8 / kAu);
+    const SceneConfig config = sun_scene(dir, {{{"name", "moon"},
+                                                {"kind", "moon"},
+                                                {"ephemeris", "moon"},
+                                                {"radius_m", std::sin(a * alpha) * 3.844e8},
+                                                {"albedo", 0.0}}});
+    const ChannelConfig ch = channel(20, 20, 256);
+    ClusterConfig cluster;
+    cluster.channels.push_back(ch);
+    SceneRenderer renderer(cluster, ch, config);
+    const double whole = atmosphere::sun_irradiance_scene_units(config.bodies[0], kAu);
+    const auto u = static_cast<float>(config.bodies[0].limb_darkening_u);
+    for (const double s : {0.0, 0.5, 1.0, 1.6, 3.0}) {
+        const double expected = shading::eclipse_visible_exact(static_cast<float>(a), static_cast<float>(s), u);
+        const double ratio = sun_flux_behind_a_moon(renderer, ch, s) / whole;
+        EXPECT_NEAR(ratio, expected, 0.01) << "the moon " << s << " Sun radii from the Sun's centre";
+        std::printf("moon at %.1f Sun radii: light %.4f of the Sun's, visible part %.4f\n", s, ratio, expected);
+    }
 }

@@ -6,7 +6,8 @@ SkySecondLight brightest_moonlight(const FrameContext& f) {
     SkySecondLight out;
     const FrameBody* best = nullptr;
     for (const FrameBody& b : f.far_to_near)
-        if (b.light.flux > 0.0 && (!best || b.light.flux > best->light.flux)) best = &b;
+        if (b.body->kind != BodyKind::Star && b.light.flux > 0.0 && (!best || b.light.flux > best->light.flux))
+            best = &b;
     if (!best) return out;
     const auto casters = f.casters.find(best->body->id);
     out.present = true;

@@ -23,7 +23,7 @@ void PainterPass::draw(const PassInputs&, int) {
     const SkyInFrontSource* sky = after_sky_ ? atmosphere_ : nullptr;
     for (const FrameBody& it : f.far_to_near) {
         if (it.body->kind == BodyKind::Star)
-            sun_.draw(f.view, *it.body, it.sphere, sky);
+            sun_.draw(f.view, *it.body, it.sphere, sky, it.light.disc_weight, it.light.small_disc);
         else if (!atmosphere_ || !atmosphere_->draws_surface(f, it)) {
             bodies_.draw(f.view, *it.body, *it.state, it.sphere, f.light, shadows_, f.casters_of(it.body->id), sky,
                          it.light);

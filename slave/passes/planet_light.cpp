@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "atmosphere/solar_scale.hpp"
 #include "scene/planet_magnitude.hpp"
 #include "shading/shared_shading.hpp"
 #include "scene/sky_positions.hpp"
@@ -166,6 +167,41 @@ double planetshine_irradiance(const BodyConfig& source, const BodyState& source_
            (g.sun_distance_au * g.sun_distance_au) * ratio * ratio * lambert_phase(glm::radians(g.phase_deg));
 }
 
+namespace {
+
+// From disc to point with the body's angular radius rho: the disc's weight and the point's width.
+void set_handover(PlanetLight& light, double rho, const PlanetLightInputs& in) {
+    light.disc_weight = glm::smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
+    light.point_sigma_rad = std::sqrt(in.psf_sigma_rad * in.psf_sigma_rad + 0.25 * rho * rho);
+}
+
+}  // namespace
+
+PlanetLight star_light(const BodyConfig& b, const BodyState& s, const PlanetLightInputs& in) {
+    PlanetLight light;
+    const double d = glm::length(in.camera_position_m - s.position_m);
+    const double tint = luminance(glm::dvec3(b.tint));
+    if (d <= b.radius_m || tint <= 0.0) return light;
+    light.unit_color = glm::dvec3(b.tint) / tint;
+    light.flux = atmosphere::sun_irradiance_scene_units(b.radiance, b.radius_m, b.limb_darkening_u, d) * tint;
+    const double rho = std::asin(b.radius_m / d);
+    set_handover(light, rho, in);
+    light.small_disc = rho < 8.0 * in.handover_start_rad;
+    return light;
+}
+
+double star_visible_fraction(const SkyDisc& star, const std::vector<SkyDisc>& nearer, double limb_u) {
+    if (star.radius_rad <= 0.0) return 1.0;
+    double visible = 1.0;
+    for (const SkyDisc& o : nearer) {
+        const double separation_rad = angle_between(star.center_dir, o.center_dir);
+        visible *= shading::eclipse_visible_exact(static_cast<float>(o.radius_rad / star.radius_rad),
+                                                  static_cast<float>(separation_rad / star.radius_rad),
+                                                  static_cast<float>(limb_u));
+    }
+    return visible;
+}
+
 PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLightInputs& in) {
     PlanetLight light;
     const double mean = luminance(in.map_mean_rgb);
@@ -181,9 +217,8 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
     }
     set_planetshine(light, b, s, g, in);
     const double rho = std::asin(std::min(b.radius_m / (g.observer_distance_au * kAstronomicalUnit_m), 1.0));
-    light.disc_weight = glm::smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
+    set_handover(light, rho, in);
     light.small_disc = rho < 8.0 * in.handover_start_rad;
-    light.point_sigma_rad = std::sqrt(in.psf_sigma_rad * in.psf_sigma_rad + 0.25 * rho * rho);
     return light;
 }
 

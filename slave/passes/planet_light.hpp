@@ -94,6 +94,24 @@ double planetshine_irradiance(const BodyConfig& source, const BodyState& source_
                               const glm::dvec3& lit_position_m, const glm::dvec3& sun_position_m,
                               double sun_irradiance_1au);
 
+// A star of the scene (the Sun) from disc to point the same way: its flux is the irradiance its
+// limb-darkened disc gives at the camera, in its tint; the disc (SunPass) is drawn times the
+// weight. The map and Sun inputs are not used.
+PlanetLight star_light(const BodyConfig& star, const BodyState& state, const PlanetLightInputs& in);
+
+// A disc on the sky as the camera sees it: its centre's direction (unit) and angular radius.
+struct SkyDisc {
+    glm::dvec3 center_dir{0.0, 0.0, 1.0};
+    double radius_rad = 0.0;
+};
+
+// The part of a star's limb-darkened disc (coefficient limb_u) that the nearer discs leave
+// visible: each occluder's eclipse_visible_exact (shared/eclipse_shadow.glsl), multiplied. Exact for
+// one occluder (the Moon before the Sun); two that overlap each other are counted twice. The
+// star's point carries this part of its light, so a point-sized Sun behind the Moon neither leaks
+// past the Moon's edge nor is hidden twice.
+double star_visible_fraction(const SkyDisc& star, const std::vector<SkyDisc>& nearer, double limb_u);
+
 // The grid of an image of width x height linear RGB (body_texture's BodyImage layout), times tint.
 LuminanceGrid luminance_grid(int width, int height, const std::vector<float>& rgb, const glm::dvec3& tint);
 

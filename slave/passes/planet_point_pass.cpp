@@ -39,8 +39,13 @@ int PlanetPointPass::prepare_at(const FrameContext& frame, bool after_sky) {
 }
 
 void PlanetPointPass::set_occluders(const GlProgram& program, const FrameBody& body) const {
-    // The nearer bodies that can hide this one, largest on screen first.
+    // The nearer bodies that can hide this one, largest on screen first. A star's point carries
+    // only what they leave of its disc already (star_visible_fraction): none hide it again.
     std::vector<std::pair<double, glm::vec4>> nearer;
+    if (body.body->kind == BodyKind::Star) {
+        program.set("u_occluder_count", 0);
+        return;
+    }
     for (const FrameBody& o : frame_->far_to_near) {
         if (o.body->kind == BodyKind::Star || o.sphere.distance_m >= body.sphere.distance_m) continue;
         const double radius_rad =

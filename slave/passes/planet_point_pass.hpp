@@ -1,12 +1,13 @@
 #pragma once
-// The planets and moons that show as points this frame (PlanetLight::has_point, decided once per
-// frame for the whole cluster in the frame context): each drawn with the stars' PSF, widened by
-// its disc's size, carrying (1 - disc weight) of its light, added after the discs so that the
-// point's light under a fading disc is not painted over. Hidden per pixel behind up to four nearer
-// bodies. Beyond the air: before the atmosphere, or after a sky drawn first with the air's
-// transmittance in front (beyond_the_air.hpp). A point whose largest sprite (255 pixels, plus the
-// guard band) cannot reach the channel, or whose peak the exposure cannot show, is not drawn: 0
-// draws when none is left.
+// The planets, moons and the Sun that show as points this frame (PlanetLight::has_point, decided
+// once per frame for the whole cluster in the frame context): each drawn with the stars' PSF,
+// widened by its disc's size, carrying (1 - disc weight) of its light, added after the discs so
+// that the point's light under a fading disc is not painted over. Hidden per pixel behind up to
+// four nearer bodies; the Sun's point instead carries the part of its disc they leave visible.
+// Beyond the air: before the atmosphere, or after a sky drawn first with the air's transmittance
+// in front (beyond_the_air.hpp). A point whose largest sprite (255 pixels, plus the guard band)
+// cannot reach the channel, or whose peak the exposure cannot show, is not drawn: 0 draws when
+// none is left.
 #include <vector>
 
 #include "gl/gl_buffer.hpp"

@@ -9,7 +9,7 @@ SunPass::SunPass()
       after_sky_("sphere.vert", "sun.frag", "#define SUN_AFTER_SKY 1\n") {}
 
 void SunPass::draw(const ChannelView& view, const BodyConfig& body, const SphereView& sphere,
-                   const SkyInFrontSource* sky) {
+                   const SkyInFrontSource* sky, double weight, bool antialias_limb) {
     // The billboard covers the corona (kCoronaExtent radii, as shaders/sun.frag), unless the
     // corona is off or the camera is so close that the disc fills the view anyway.
     const double extent = body.corona > 0.0 ? kCoronaExtent : 1.0;
@@ -21,10 +21,12 @@ void SunPass::draw(const ChannelView& view, const BodyConfig& body, const Sphere
     const GlProgram& p = sky ? after_sky_ : program_;
     p.use();
     p.set("u_radiance", glm::vec3(body.tint) * static_cast<float>(body.radiance));
+    p.set("u_disc_weight", static_cast<float>(weight));
     p.set("u_limb_u", static_cast<float>(body.limb_darkening_u));
     p.set("u_disc_sin_alpha", static_cast<float>(std::min(sphere.sin_alpha, 1.0)));
     p.set("u_disc_distances_m", sphere_distances(sphere));
     p.set("u_corona", static_cast<float>(body.corona));
+    p.set("u_limb_aa", antialias_limb ? 1 : 0);
     if (sky) sky->set_sky_in_front(p);
     // The disc and the corona add to the stars behind them, the coverage (alpha) unchanged; the
     // geometry attachment is not blended.

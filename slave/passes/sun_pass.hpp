@@ -20,8 +20,12 @@ public:
     // Adds the disc and the corona into the bound framebuffer (and the disc's geometry). sky: the
     // frame's sky was drawn first, and both take the air's transmittance in front of them from it
     // (beyond_the_air.hpp); the bound framebuffer is then the colour alone.
+    // weight: the disc's share of the star's light (PlanetLight::disc_weight; the rest is a point);
+    // the corona, an extended light of its own, is drawn whole.
+    // antialias_limb (a small disc, PlanetLight::small_disc): the limb's coverage of each pixel
+    // weights it, and a limb pixel is shaded inside the limb.
     void draw(const ChannelView& view, const BodyConfig& body, const SphereView& sphere,
-              const SkyInFrontSource* sky = nullptr);
+              const SkyInFrontSource* sky = nullptr, double weight = 1.0, bool antialias_limb = false);
 
 private:
     GlProgram program_, after_sky_;
