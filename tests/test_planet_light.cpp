@@ -119,6 +119,11 @@ TEST(PlanetMagnitude, CurvesAtKnownPointsAndPastTheirFits) {
     past_fit.phase_deg = 30.0;
     EXPECT_NEAR(saturn_with_rings_magnitude_v(past_fit) - saturn_with_rings_magnitude_v(at_fit),
                 *planet_magnitude_v("saturn", past_fit) - *planet_magnitude_v("saturn", at_fit), 1e-9);
+    // Whose point light includes its rings (the slaves' points and the master's exposure share it):
+    // only a ringed Saturn's has a measured magnitude.
+    EXPECT_TRUE(magnitude_includes_rings("saturn", true));
+    EXPECT_FALSE(magnitude_includes_rings("saturn", false));
+    EXPECT_FALSE(magnitude_includes_rings("jupiter", true));
     EXPECT_NEAR(lambert_phase(0.0), 1.0, 1e-15);
     EXPECT_NEAR(lambert_phase(glm::radians(90.0)), 1.0 / std::numbers::pi, 1e-15);
 }

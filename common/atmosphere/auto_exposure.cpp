@@ -18,7 +18,8 @@ constexpr int kGrid = 8;  // rays per channel side
 
 // The slaves light the night sky with the drawn light of the brightest body (slave/passes/
 // moonlight.hpp); for the bodies with a measured phase curve (the Moon, the planets) that light is
-// the curve's, which is what the exposure takes here, in units of the Sun's irradiance at 1 AU.
+// the curve's (a ringed Saturn's with its rings), which is what the exposure takes here, in units
+// of the Sun's irradiance at 1 AU.
 SkySecondLight AutoExposure::second_light(const Snapshot& snap, const BodyState& sun) const {
     SkySecondLight out;
     double best = 0.0;
@@ -26,7 +27,8 @@ SkySecondLight AutoExposure::second_light(const Snapshot& snap, const BodyState&
         const BodyConfig& b = scene_->bodies[st.id];
         if (b.kind == BodyKind::Star || b.atmosphere.present) continue;
         const PlanetGeometry g = planet_geometry(st.position_m, st.orientation, sun.position_m, snap.camera_position_m);
-        const std::optional<double> ratio = phase_curve_irradiance_ratio(b.ephemeris, b.radius_m, g);
+        const std::optional<double> ratio = phase_curve_irradiance_ratio(
+            b.ephemeris, b.radius_m, g, magnitude_includes_rings(b.ephemeris, b.rings.present));
         if (!ratio || !(*ratio > best)) continue;
         best = *ratio;
         out.present = true;

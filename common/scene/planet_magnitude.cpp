@@ -117,6 +117,8 @@ std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, do
     return size * size * std::pow(10.0, -0.4 * (v - kSunMagnitudeV));
 }
 
+bool magnitude_includes_rings(const std::string& planet, bool has_rings) { return has_rings && planet == "saturn"; }
+
 double saturn_with_rings_magnitude_v(const PlanetGeometry& g) {
     const double fit = std::clamp(g.phase_deg, 0.0, 6.5);
     const double sin_b = std::sin(glm::radians(std::min(std::abs(g.sub_observer_latitude_deg), 27.0)));

@@ -56,6 +56,11 @@ std::optional<double> planet_magnitude_v(const std::string& planet, const Planet
 std::optional<double> phase_curve_irradiance_ratio(const std::string& planet, double radius_m, const PlanetGeometry& g,
                                                    bool with_rings = false);
 
+// Whether a body's point light is its globe's and rings' together (a ringed Saturn: its rings'
+// magnitude is measured) rather than its globe's alone. The slaves' points and the master's
+// exposure both take it, so that both see the same light.
+bool magnitude_includes_rings(const std::string& planet, bool has_rings);
+
 // Saturn's globe and rings together (Mallama & Hilton 2018, equation 10, fitted for phase angles
 // up to 6.5 deg and the rings opened by up to 27 deg): V(1, a) = -8.914 - 1.825 sin b + 0.026 a
 // - 0.378 sin b exp(-2.25 a), b = |g.sub_observer_latitude_deg| (clamped to 27 deg). Past 6.5 deg the

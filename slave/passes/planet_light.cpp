@@ -67,7 +67,7 @@ std::optional<double> curve_flux(const BodyConfig& b, const PlanetGeometry& g, c
 
 // Saturn drawn with its rings: as a point it carries the globe's and the rings' light together
 // (saturn_with_rings_magnitude_v); the disc stays the globe's curve and the rings draw their own light.
-bool point_carries_rings(const BodyConfig& b) { return b.rings.present && b.ephemeris == "saturn"; }
+bool point_carries_rings(const BodyConfig& b) { return magnitude_includes_rings(b.ephemeris, b.rings.present); }
 
 // The measured curve over the drawn model's light: what scales the disc's radiance. Past the
 // curve's data it goes on as a Lambert sphere, as the model does there (the lunar-Lambert L is 0
