@@ -34,6 +34,7 @@ uniform sampler2D u_weights;
 uniform EclipseCasters u_ecl;
 uniform sampler2D u_eclipse_lut;
 uniform vec2 u_eclipse_lut_size;
+uniform float u_disc_weight;  // the planet's disc weight from point to disc (passes/planet_light): 0..1
 
 // Blended in place (dual-source, as atmosphere_lookup.frag): colour = out_add + colour so far * out_factor.
 layout(location = 0, index = 0) out vec4 out_add;
@@ -45,7 +46,7 @@ vec3 to_scene_rgb(vec3 f) {
     return max(xyz_to_linear_srgb(atm_samples_to_xyz(f, u_weights, u_weight_count)), vec3(0.0)) * u_solar_scale;
 }
 
-void main() {
+void shade() {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec4 geo = texelFetch(u_geometry, px, 0);
     vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
@@ -119,4 +120,13 @@ void main() {
     }
     out_add = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint, 0.0);
     out_factor = surface ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(seg.transmittance * tint, 1.0);
+}
+
+// A planet between point and disc (u_disc_weight < 1): its air and ground are added times the
+// weight over what lies behind, and hide none of it: the planet's own point, drawn before the air,
+// lies there, and the few pixels of stars behind so small a disc are not worth hiding.
+void main() {
+    shade();
+    out_add.rgb *= u_disc_weight;
+    if (u_disc_weight < 1.0) out_factor.rgb = vec3(1.0);
 }

@@ -43,12 +43,15 @@ uniform vec4 u_halo_map;   // its texture coordinate = gl_FragCoord.xy * u_halo_
 uniform sampler2D u_body_map;   // SKY_HALF 2: the planet's map (linear RGB), as the body pass has it
 uniform mat3 u_channel_to_body;
 uniform vec3 u_reflectance;     // albedo * tint
+uniform float u_map_lod;        // the map's level, as the body pass samples it (BodyPass::map_lod)
 uniform sampler2D u_moon_phased;  // SKY_MOON: the Moon's sky-view table (common/atmosphere/moonlit_sky.hpp)
 uniform sampler2D u_moon_mie;
 uniform sampler2D u_moon_third;
 uniform vec3 u_moon;            // unit, channel frame: camera -> Moon
 uniform vec3 u_moon_perp;       // atm_sky_view_sun_perp(-u_center_dir, u_moon)
 uniform vec3 u_moon_scale;      // the Moon's irradiance over the Sun's, per channel, times u_solar_scale
+uniform float u_disc_weight;    // the planet's disc weight from point to disc (passes/planet_light): 0..1
+uniform int u_supersample;      // SKY_OUTSIDE and SKY_MAP: n x n rays a pixel (a small disc: PlanetLight::supersample)
 
 layout(location = 0, index = 0) out vec4 out_add;
 layout(location = 0, index = 1) out vec4 out_factor;
@@ -135,7 +138,7 @@ void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) 
 vec4 surface_reflectance(vec3 v) {
     vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
     if (hit.w < 0.0) return vec4(0.0, 0.0, 0.0, -1.0);
-    return vec4(u_reflectance * textureLod(u_body_map, body_map_uv(u_channel_to_body, hit.xyz), 0.0).rgb, 0.0);
+    return vec4(u_reflectance * textureLod(u_body_map, body_map_uv(u_channel_to_body, hit.xyz), u_map_lod).rgb, 0.0);
 }
 #endif
 
@@ -226,8 +229,37 @@ void shade(vec3 v, ivec2 px) {
 }
 #endif
 
+#if SKY_OUTSIDE && SKY_MAP
+// A planet a few pixels across, seen from outside: its bright rim of air and its map are finer
+// than a pixel, so the pixel is the mean of n x n rays over its area (what it draws is then its
+// light, not the luck of where one ray falls).
+void shade_area(vec2 xy, int n) {
+    vec4 add = vec4(0.0), factor = vec4(0.0);
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            shade(channel_ray(xy + (vec2(i, j) + 0.5) / float(n) - 0.5, u_size, u_tangents), ivec2(xy));
+            add += out_add;
+            factor += out_factor;
+        }
+    }
+    out_add = add / float(n * n);
+    out_factor = factor / float(n * n);
+}
+#endif
+
 void main() {
+#if SKY_OUTSIDE && SKY_MAP
+    if (u_supersample > 1) {
+        shade_area(gl_FragCoord.xy, u_supersample);
+    } else {
+        shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), ivec2(gl_FragCoord.xy));
+    }
+#else
     shade(channel_ray(gl_FragCoord.xy, u_size, u_tangents), ivec2(gl_FragCoord.xy));
+#endif
+    // A planet between point and disc: added times its weight, hiding nothing (as atmosphere.frag).
+    out_add.rgb *= u_disc_weight;
+    if (u_disc_weight < 1.0) out_factor.rgb = vec3(1.0);
 #if SKY_HALO
     // The glare's halo, upsampled as glare_upsample.frag does it, added last (nothing after this
     // draw multiplies the colour): the same sum as the glare pass's own additive draw.

@@ -20,6 +20,7 @@ uniform vec2 u_profile_map;     // s = r * x + y
 uniform float u_profile_texels;
 uniform vec3 u_lit;             // tint * phase_albedo / 4 * E_sun / pi * disc weight (I/F -> radiance, times varpi0 P / 4)
 uniform int u_limb_aa;          // 1: the globe is a small disc, its limb antialiased (body.frag's u_limb_aa)
+uniform int u_supersample;      // n: n x n rays a pixel (small rings), else 1
 
 #if RING_AFTER_SKY
 uniform AtmosphereParams u_atm;  // the air in front (SkyInFront: slave/passes/beyond_the_air.hpp)
@@ -50,23 +51,24 @@ vec3 through_the_air(vec3 v, vec3 radiance, float blocked) {
 }
 #endif
 
-void main() {
-    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+// One ray's rings: (radiance, blocked) times the part of the ray the globe leaves; zero where the
+// ray misses them. fw_rho: the limb's antialiasing width (body.frag's fwidth(rho)); lod: the
+// profile's mip level.
+vec4 ring_sample(vec3 v, float fw_rho, float lod) {
     float t = ring_plane_hit(u_camera, v, u_normal);
-    if (t <= 0.0) discard;
+    if (t <= 0.0) return vec4(0.0);
     // The globe in front: where the ring plane lies beyond the ray's closest approach to the
     // globe's centre, the globe covers the pixel as body.frag's limb covers it (antialiased for a
     // small disc), and the rings show on the rest (the limb of a small globe would otherwise cut
     // them a whole pixel at a time).
     vec3 cs = u_to_sphere * u_camera, vs = u_to_sphere * v;
     float rho = length(cross(cs, vs)) / length(vs);  // the ray's distance from the centre: 1 on the limb
-    float globe = u_limb_aa == 0 ? (rho < 1.0 ? 1.0 : 0.0) : clamp((1.0 - rho) / max(fwidth(rho), 1e-6) + 0.5, 0.0, 1.0);
+    float globe = u_limb_aa == 0 ? (rho < 1.0 ? 1.0 : 0.0) : clamp((1.0 - rho) / max(fw_rho, 1e-6) + 0.5, 0.0, 1.0);
     float shown = t > -dot(cs, vs) / dot(vs, vs) ? 1.0 - globe : 1.0;
-    if (shown <= 0.0) discard;
+    if (shown <= 0.0) return vec4(0.0);
     vec3 q = u_camera + t * v;
     float s = length(q) * u_profile_map.x + u_profile_map.y;
-    if (s < 0.0 || s > 1.0) discard;
-    float lod = log2(max(fwidth(s) * u_profile_texels, 1e-6));
+    if (s < 0.0 || s > 1.0) return vec4(0.0);
     vec2 texel = textureLod(u_profile, vec2(s, 0.5), max(lod, 0.0)).rg;  // (tau, relative albedo)
     float tau = texel.x;
     float mu0 = abs(dot(u_sun_dir, u_normal));
@@ -74,9 +76,39 @@ void main() {
     bool same_side = (dot(u_camera, u_normal) > 0.0) == (dot(u_sun_dir, u_normal) > 0.0);
     float sunlit = ring_sunlit_fraction(u_to_sphere * q, u_to_sphere * u_sun_dir, u_sun_radius_rad);
     vec3 radiance = u_lit * (texel.y * sunlit * ring_reflectance(tau, mu0, mu, same_side));
-    float blocked = 1.0 - ring_transmission(tau, mu);
+    return shown * vec4(radiance, 1.0 - ring_transmission(tau, mu));
+}
+
+void main() {
+    vec3 v = channel_ray(gl_FragCoord.xy, u_size, u_tangents);
+    // The footprints, from the pixel's centre ray in uniform control flow (the samples below may
+    // miss the rings where the centre does not).
+    vec3 cs = u_to_sphere * u_camera, vs = u_to_sphere * v;
+    float fw_rho = fwidth(length(cross(cs, vs)) / length(vs));
+    float t_c = ring_plane_hit(u_camera, v, u_normal);
+    float s_c = length(u_camera + t_c * v) * u_profile_map.x + u_profile_map.y;
+    float lod = log2(max(fwidth(s_c) * u_profile_texels, 1e-6));
+    if (isnan(lod) || isinf(lod)) lod = 0.0;  // a centre ray along the ring plane
+    vec4 ring;
+    if (u_supersample > 1) {
+        // Small rings (PlanetLight::supersample): the mean of n x n rays over the pixel, whose edges,
+        // gaps and globe shadow, finer than a pixel, would otherwise flicker from frame to frame.
+        float n = float(u_supersample);
+        ring = vec4(0.0);
+        for (int j = 0; j < u_supersample; ++j) {
+            for (int i = 0; i < u_supersample; ++i) {
+                vec3 vi = channel_ray(gl_FragCoord.xy + (vec2(i, j) + 0.5) / n - 0.5, u_size, u_tangents);
+                ring += ring_sample(vi, fw_rho / n, lod - log2(n));
+            }
+        }
+        ring /= n * n;
+    } else {
+        ring = ring_sample(v, fw_rho, lod);
+    }
+    if (ring.a <= 0.0 && all(lessThanEqual(ring.rgb, vec3(0.0)))) discard;
+    vec3 radiance = ring.rgb;
 #if RING_AFTER_SKY
-    radiance = through_the_air(v, radiance, blocked);
+    radiance = through_the_air(v, radiance, ring.a);
 #endif
-    frag_color = shown * vec4(radiance, blocked);
+    frag_color = vec4(radiance, ring.a);
 }

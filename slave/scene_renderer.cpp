@@ -152,6 +152,7 @@ struct SceneRenderer::Impl {
     double point_to_disc_start = 0.0;  // planet_light.hpp: from the PSF and the cluster's coarsest pixel
     double coarsest_pixel_rad = 0.0;   // of every channel of the cluster: cluster-wide detail follows it
     void set_planet_lights(FrameContext& f) const;
+    glm::dvec3 air_point_flux(const FrameContext& f, const FrameBody& planet, const PlanetLightInputs& in) const;
     PlanetShine planetshine_on(const FrameContext& f, const BodyConfig& body, const BodyState& state) const;
     PatternPass* pattern = nullptr;  // the passes before it draw the scene
     std::vector<GlareMeasurement> no_measurements;
@@ -240,13 +241,28 @@ void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
             it.light = star_light(*it.body, *it.state, in);
             it.light.flux *= star_visible_fraction_in(f, it);
         }
-        if (it.body->kind == BodyKind::Star || it.body->atmosphere.present) continue;
+        if (it.body->kind == BodyKind::Star) continue;
         in.map_mean_rgb = painter->bodies().map_mean_rgb(it.body->id);
         in.map_grid = painter->bodies().map_grid(it.body->id);
         const PlanetShine shine = planetshine_on(f, *it.body, *it.state);
         in.shine = &shine;
         it.light = planet_light(*it.body, *it.state, in);
+        if (it.body->atmosphere.present)
+            it.light = with_air(it.light, it.light.disc_weight < 1.0 ? air_point_flux(f, it, in) : glm::dvec3(0.0));
     }
+}
+
+// A planet with air as a point: its air's disc for a distant observer, over a ground of the
+// albedo times the map's lit, visible part (lit_map_ratio, as the planets without air take it).
+glm::dvec3 SceneRenderer::Impl::air_point_flux(const FrameContext& f, const FrameBody& planet,
+                                               const PlanetLightInputs& in) const {
+    if (!atmosphere) return glm::dvec3(0.0);
+    const glm::dquat to_body = glm::conjugate(planet.state->orientation);
+    const glm::dvec3 p = planet.state->position_m;
+    const double mean = shading::rec709_luminance(glm::vec3(in.map_mean_rgb));
+    const double map = lit_map_ratio(in.map_grid, mean, to_body * glm::normalize(in.sun_position_m - p),
+                                     to_body * glm::normalize(in.camera_position_m - p), 0.0);
+    return atmosphere->point_flux(f, planet, planet.body->albedo * in.map_mean_rgb * map);
 }
 
 // The light of the body a moon circles (its shadow group's parent: the Earth on the Moon), if that

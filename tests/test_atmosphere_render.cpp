@@ -474,6 +474,12 @@ TEST(AtmosphereRender, HardCasesStayFinite) {
         for (const auto& c : cases) {
             const Image img = r.render(c.snap);
             EXPECT_EQ(bad_pixels(img), 0) << model << ": " << c.name;
+            if (c.name == "1 AU") {  // the Earth under a pixel: its point (passes/planet_light, with_air), not its air
+                double peak = 0.0;
+                for (int y = 0; y < img.height; ++y)
+                    for (int x = 0; x < img.width; ++x) peak = std::max(peak, double(img.pixel(x, y)[1]));
+                EXPECT_GT(peak, 0.0) << model << ": the Earth's point at 1 AU";
+            }
             if (c.name == "rock at sunset") {
                 // The rock's night side (it is lit from behind) gets the air of its 3 m only,
                 // which needs its distance from the geometry: far darker than the evening sky.
@@ -486,6 +492,7 @@ TEST(AtmosphereRender, HardCasesStayFinite) {
         const Image img = narrow.render(far);
         EXPECT_EQ(bad_pixels(img), 0) << model << ": 1 AU, narrow";
         EXPECT_GT(img.pixel(16, 16)[1], 0.0f) << model << ": the Earth's day side at 1 AU";
-        EXPECT_EQ(r.atmosphere_stats().passes_run, static_cast<long>(cases.size()));
+        // Every case draws its air but the Earth at 1 AU in the wide channel, a point there.
+        EXPECT_EQ(r.atmosphere_stats().passes_run, static_cast<long>(cases.size()) - 1);
     }
 }

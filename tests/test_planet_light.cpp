@@ -63,20 +63,9 @@ ChannelConfig channel(double left_deg, double right_deg, int width, double up_do
     return test::straight_channel(left_deg, right_deg, width, up_down_deg);
 }
 
-// The planet at the origin (pole +Z), the Sun at r AU along `to_sun`, the camera at `delta_m` along a
-// direction at `phase_deg` from it in the equatorial plane, looking at the planet with +Z up.
+// The planet at the origin, the Sun at r AU, the camera at delta_m at phase_deg from it.
 Snapshot planet_view(double phase_deg, double r_au, double delta_m) {
-    const double a = glm::radians(phase_deg);
-    const glm::dvec3 to_sun(1, 0, 0), to_camera(std::cos(a), std::sin(a), 0);
-    Snapshot s;
-    s.bodies.resize(2);
-    s.bodies[1].id = 1;
-    s.bodies[0].position_m = to_sun * r_au * kAu;
-    s.camera_position_m = to_camera * delta_m;
-    s.settings.exposure = 0.0f;  // no exposure: every point drawn, its sprite out to a fixed reach
-    const glm::dvec3 back = to_camera, up(0, 0, 1), right = glm::normalize(glm::cross(up, back));
-    s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
-    return s;
+    return test::phase_view(phase_deg, r_au * kAu, delta_m);
 }
 
 using test::frame_flux;

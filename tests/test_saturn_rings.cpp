@@ -540,8 +540,9 @@ TEST(SaturnRings, SaturnApproachedWithItsRingsFollowsItsMagnitudeAcrossTheHandov
     // degrees over the rings. As a point it carries Mallama & Hilton's globe-and-rings magnitude;
     // as a disc, the globe's curve and the rings' own light (the slab, its phase albedo fitted to
     // that magnitude). The handover (about frames 86 to 96) has no step of its own; the rings drawn
-    // 15 to 25 pixels across flicker by up to 3 % from frame to frame (aliasing of rings narrower
-    // than a pixel, not the handover), which the bound on the steps allows.
+    // 15 to 25 pixels across, nearly edge-on (10 degrees), still flicker by up to 2.4 % from frame to
+    // frame with 4 x 4 rays a pixel (3 % with one: rings narrower than a pixel, not the handover),
+    // which the bound on the steps allows.
     headless();
     EglContext gl(-1);
     const SceneConfig scene = shipped_saturn_scene(test::scratch_dir("ring_approach"));
@@ -575,6 +576,6 @@ TEST(SaturnRings, SaturnApproachedWithItsRingsFollowsItsMagnitudeAcrossTheHandov
         std::printf("rings opened %.1f deg: worst step %.4f, worst level %.4f of Mallama & Hilton's light\n", beta,
                     worst_step, worst_level);
         EXPECT_LT(worst_level, 0.17) << beta;  // 0.2 mag
-        EXPECT_LT(worst_step, 0.035) << beta;
+        EXPECT_LT(worst_step, 0.03) << beta;
     }
 }

@@ -131,6 +131,16 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
 
 vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geometry, vec3* transmittance,
                                     EclipseRay shadow) const {
+    const RadianceParts parts = radiance_parts(st, t_geometry, transmittance, shadow);
+    return parts.air + gpu_.ground_albedo * parts.ground_per_albedo;
+}
+
+ProductionAtmosphere::RadianceParts ProductionAtmosphere::radiance_parts(const AtmosphereRayStart& st) const {
+    return radiance_parts(st, -1.0f, nullptr, eclipse_ray(eclipse_no_casters(), vec2(1.0f), vec3(0.0f), vec3(0.0f)));
+}
+
+ProductionAtmosphere::RadianceParts ProductionAtmosphere::radiance_parts(const AtmosphereRayStart& st, float t_geometry,
+                                                                         vec3* transmittance, EclipseRay shadow) const {
     if (shadow.casters.mode == ECLIPSE_MODE_LUT || shadow.casters.mode == ECLIPSE_MODE_ILLUSTRATIVE)
         shadow.casters.mode = ECLIPSE_MODE_EXACT;
     const sampler2D no_lut{&tables_.transmittance};  // never sampled in exact or fast mode
@@ -150,18 +160,19 @@ vec3 ProductionAtmosphere::radiance(const AtmosphereRayStart& st, float t_geomet
         seg = atm_view_ray_shadowed(a, trans, ts, ms, mss, quality_.multiple_scattering, st, t_geometry,
                                     quality_.view_samples, shadow, no_lut);
     }
-    vec3 out = seg.inscatter_per_sr;
+    RadianceParts out;
+    out.air = seg.inscatter_per_sr;
     if (ground && !geometry_first) {
-        vec3 surface;
+        vec3 surface;  // per unit albedo
         if (quality_.analytic) {
             const float t = atm_distance_to_ground(a, st.r_m, st.mu);
             const float mu_s_g = atm_mu_s_at(st.r_m, st.mu_s, st.nu, t, a.bottom_radius_m);
-            surface = a.ground_albedo * (1.0f / CUPOLA_PI) * atm_analytic_sun(fit_, mu_s_g) * std::max(mu_s_g, 0.0f);
+            surface = vec3(1.0f / CUPOLA_PI) * atm_analytic_sun(fit_, mu_s_g) * std::max(mu_s_g, 0.0f);
         } else {
-            surface = atm_ground_radiance(a, trans, ts, irr, es, st, a.ground_albedo);
+            surface = atm_ground_radiance(a, trans, ts, irr, es, st, vec3(1.0f));
         }
-        out = out + seg.transmittance * surface *
-                        eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r_m, st.mu));
+        out.ground_per_albedo =
+            seg.transmittance * surface * eclipse_light_along(shadow, no_lut, atm_distance_to_ground(a, st.r_m, st.mu));
     }
     if (transmittance) *transmittance = seg.transmittance;
     return out;

@@ -89,8 +89,17 @@ public:
     // exact or fast mode; the lookup table is not available here and counts as exact).
     glm::vec3 radiance(const shading::AtmosphereRayStart& start, float t_geometry, glm::vec3* transmittance,
                        shading::EclipseRay shadow) const;
+    // The same light in two parts, unshadowed and without scene geometry: the air's in-scatter, and
+    // what the ground adds per unit ground albedo, seen through the air (zero where the ray misses
+    // it). radiance() = air + ground_albedo * ground_per_albedo.
+    struct RadianceParts {
+        glm::vec3 air{0.0f}, ground_per_albedo{0.0f};
+    };
+    RadianceParts radiance_parts(const shading::AtmosphereRayStart& start) const;
 
 private:
+    RadianceParts radiance_parts(const shading::AtmosphereRayStart& st, float t_geometry, glm::vec3* transmittance,
+                                 shading::EclipseRay shadow) const;
     ProductionRadiance sky_from_table(const shading::AtmosphereRayStart& st, float d_m, const glm::vec3& v,
                                       const glm::vec3& sun) const;
 

@@ -140,6 +140,11 @@ GpuSkyViewTable* GpuAtmosphere::moon_sky_view() {
     return moon_sky_view_.get();
 }
 
+const atmosphere::AirDiscCurve& GpuAtmosphere::disc_curve() {
+    if (!disc_curve_) disc_curve_ = std::make_unique<atmosphere::AirDiscCurve>(model_);
+    return *disc_curve_;
+}
+
 void GpuAtmosphere::bind(GLuint first_unit) const {
     transmittance_.bind(first_unit);
     multiple_scattering_.bind(first_unit + 1);
@@ -203,7 +208,8 @@ int AtmospherePass::prepare(const FrameContext& frame) {
         const auto atm = atmospheres_.find(it.body->id);
         if (atm == atmospheres_.end()) continue;
         const glm::dvec3 center = it.sphere.center_dir * it.sphere.distance_m;  // channel frame, double
-        if (sphere_outside_frustum(*frame.view.frustum, center, atm->second->top_radius_m())) {
+        if (it.light.disc_weight <= 0.0 ||  // a point only (PlanetPointPass): no air drawn
+            sphere_outside_frustum(*frame.view.frustum, center, atm->second->top_radius_m())) {
             ++skipped;
             continue;
         }
@@ -281,6 +287,18 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     return out;
 }
 
+glm::dvec3 AtmospherePass::point_flux(const FrameContext& f, const FrameBody& planet,
+                                      const glm::dvec3& ground_rgb) const {
+    const auto a = atmospheres_.find(planet.body->id);
+    if (a == atmospheres_.end()) return glm::dvec3(0.0);
+    const PlanetSun ps = planet_sun(*planet.state, f.light, a->second->model());
+    const glm::dvec3 to_camera = f.view.camera_position_m - planet.state->position_m;
+    const double d = glm::length(to_camera);
+    if (!(ps.solar_scale > 0.0) || d <= a->second->top_radius_m()) return glm::dvec3(0.0);
+    const double phase_deg = glm::degrees(std::acos(std::clamp(glm::dot(to_camera / d, ps.dir_world), -1.0, 1.0)));
+    return glm::max(a->second->disc_curve().flux_rgb(phase_deg, ground_rgb, d), glm::dvec3(0.0)) * ps.solar_scale;
+}
+
 bool AtmospherePass::sky_first(const FrameContext& f) const {
     if (!sky_first_on_) return false;
     const FrameBody* only = nullptr;  // the only atmosphere in view (prepare's rule)
@@ -344,8 +362,11 @@ AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     e.halo = halo_for(step);
     const Layer& l = layers_.at(static_cast<size_t>(step));
     e.moon = l.moon;
+    e.disc_weight = l.body->light.disc_weight;
+    e.supersample = l.body->light.supersample;
     if (draws_surface(*frame_, *l.body)) {
         e.surface_map = bodies_->texture(l.body->body->id);
+        e.map_lod = BodyPass::map_lod(frame_->view, l.body->sphere, *l.body->body, e.surface_map->width());
         e.channel_to_body = BodyPass::channel_to_body(frame_->view, *l.body->state);
         e.surface_reflectance = glm::vec3(l.body->body->tint) * static_cast<float>(l.body->body->albedo);
         e.sky_first = frame_->sky_first;
@@ -392,6 +413,7 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
             lookup.set("u_body_map", static_cast<int>(kSurface));
             lookup.set("u_channel_to_body", extras.channel_to_body);
             lookup.set("u_reflectance", extras.surface_reflectance);
+            lookup.set("u_map_lod", static_cast<float>(extras.map_lod));
         }
         table->bind(kSkyView);
         lookup.set("u_sky_phased", static_cast<int>(kSkyView));
@@ -424,25 +446,28 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
     const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());
+    const auto set_uniforms = [&](const GlProgram& p) {
+        set_draw_uniforms(p, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
+        if (extras.moon.on) set_moon_uniforms(p, view, atm, sphere, extras.moon, ps.solar_scale);
+        p.set("u_disc_weight", static_cast<float>(extras.disc_weight));
+        p.set("u_supersample", extras.supersample);
+    };
     if (!extras.surface_map || shading::atm_camera_outside(m.shader_params(), table_in.x)) {
         // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a
         // fan), the viewport from inside; the scissor bounds both. From outside, with the surface
         // drawn here, the planet's map gives its reflectance (SKY_MAP).
         const GlProgram& p = choose_program(atm, table_in, casters, geometry_in_air, extras, 0);
-        set_draw_uniforms(p, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
-        if (extras.moon.on) set_moon_uniforms(p, view, atm, sphere, extras.moon, ps.solar_scale);
+        set_uniforms(p);
         blend_draw(p, view, r, make_sphere_view(view, state.position_m, atm.top_radius_m()));
     } else {
         // Two draws split by the ray's ground flag, each discarding the other's pixels: the sky over
         // the cap around the zenith that misses the planet, the ground (with the planet's map) over
         // the planet's own cap.
         const GlProgram& sky = choose_program(atm, table_in, casters, geometry_in_air, extras, 1);
-        set_draw_uniforms(sky, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
-        if (extras.moon.on) set_moon_uniforms(sky, view, atm, sphere, extras.moon, ps.solar_scale);
+        set_uniforms(sky);
         blend_draw(sky, view, r, complement_cover(view, sphere), extras.sky_first);
         const GlProgram& ground = choose_program(atm, table_in, casters, geometry_in_air, extras, 2);
-        set_draw_uniforms(ground, view, atm, sphere, ps.solar_scale, sun_dir, geometry, shadows, casters);
-        if (extras.moon.on) set_moon_uniforms(ground, view, atm, sphere, extras.moon, ps.solar_scale);
+        set_uniforms(ground);
         blend_draw(ground, view, r, sphere, extras.sky_first);
     }
     if (extras.halo) {

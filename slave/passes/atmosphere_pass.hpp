@@ -21,6 +21,7 @@
 #include <memory>
 #include <vector>
 
+#include "atmosphere/air_disc.hpp"
 #include "atmosphere/production_model.hpp"
 #include "config/scene_config.hpp"
 #include "gl/gl_buffer.hpp"
@@ -61,9 +62,13 @@ public:
     // The second wavelength triplet's transmittance, multiple scattering and irradiance (a
     // six-wavelength sky-view level; 1x1 placeholders otherwise) to units first_unit .. + 2.
     void bind_second(GLuint first_unit) const;
+    // The whole disc's light for a distant observer by phase angle (atmosphere/air_disc.hpp),
+    // computed on first use: what the planet's point carries.
+    const atmosphere::AirDiscCurve& disc_curve();
 
 private:
     atmosphere::ProductionAtmosphere model_;
+    std::unique_ptr<atmosphere::AirDiscCurve> disc_curve_;
     GlTexture transmittance_, multiple_scattering_, irradiance_, color_weights_;
     GlTexture transmittance2_, multiple_scattering2_, irradiance2_;
     std::unique_ptr<GpuSkyViewTable> sky_view_, moon_sky_view_;
@@ -79,8 +84,11 @@ struct AtmosphereDrawExtras {
     const GlTexture* surface_map = nullptr;
     glm::mat3 channel_to_body{1.0f};
     glm::vec3 surface_reflectance{0.0f};  // albedo * tint, as the body pass writes it
+    double map_lod = 0.0;                 // the map's level, as the body pass samples it (BodyPass::map_lod)
     bool sky_first = false;               // written, not blended: the frame's sky is drawn first
     MoonOnAir moon;                       // the Moon's light on the air (a look-up from inside only)
+    double disc_weight = 1.0;             // the planet's disc weight (passes/planet_light): the draw's times it
+    int supersample = 1;                  // rays a pixel along each axis (a small disc seen from outside)
 };
 
 class AtmospherePass : public RenderPass, public StarSkySource, public SkyInFrontSource {
@@ -130,6 +138,10 @@ public:
     // take the air in front from (star_sky). The same on every channel that sees that atmosphere
     // alone; a channel deciding otherwise draws the same image up to float rounding.
     bool sky_first(const FrameContext& frame) const;
+    // The light a planet with air sends to the camera as a point (linear RGB, scene units x sr):
+    // its disc's air and ground for a distant observer (GpuAtmosphere::disc_curve) over a ground of
+    // reflectance ground_rgb, in the Sun's light at the planet. 0 for a body without air.
+    glm::dvec3 point_flux(const FrameContext& frame, const FrameBody& planet, const glm::dvec3& ground_rgb) const;
     void set_sky_first(bool on) { sky_first_on_ = on; }  // SceneRenderer::set_sky_first
     // The air in front of what lies beyond it, after this frame's draw (sky_first): the layer's
     // table and its inputs, the halo if the draw added it.

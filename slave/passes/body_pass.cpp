@@ -93,6 +93,12 @@ glm::mat3 BodyPass::channel_to_body(const ChannelView& view, const BodyState& st
     return glm::mat3(glm::transpose(glm::mat3_cast(state.orientation)) * view.channel_to_world);
 }
 
+double BodyPass::map_lod(const ChannelView& view, const SphereView& sphere, const BodyConfig& body, int map_width) {
+    const double pixel_on_body_rad = pixel_angle_rad(*view.frustum) * sphere.distance_m / body.radius_m;
+    const double texels = pixel_on_body_rad * map_width / (2.0 * std::numbers::pi);
+    return std::max(0.0, std::log2(std::max(texels, 1e-30)));
+}
+
 void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyState& state, const SphereView& sphere,
                     const SunLight& sun, const EclipseShadowUniforms& shadows, const shading::EclipseCasters& casters,
                     const SkyInFrontSource* sky, const PlanetLight& light) {
@@ -119,13 +125,7 @@ void BodyPass::draw(const ChannelView& view, const BodyConfig& body, const BodyS
     program.set("u_shine_dir", glm::vec3(view.world_to_channel * light.shine_dir));
     program.set("u_shine_lit", glm::vec3(glm::dvec3(body.tint) * light.shine_lit * light.disc_weight));
     program.set("u_shine_limb_weight", static_cast<float>(light.shine_limb_weight));
-    // The map's texels one pixel spans at the disc's centre: a small disc samples a coarser level.
-    // A body with an atmosphere reads level 0, as the atmosphere's look-up does when it draws the
-    // same surface (the two must agree).
-    const double pixel_on_body_rad = pixel_angle_rad(*view.frustum) * sphere.distance_m / body.radius_m;
-    const double texels = pixel_on_body_rad * tex->second->width() / (2.0 * std::numbers::pi);
-    const double lod = body.atmosphere.present ? 0.0 : std::max(0.0, std::log2(std::max(texels, 1e-30)));
-    program.set("u_map_lod", static_cast<float>(lod));
+    program.set("u_map_lod", static_cast<float>(map_lod(view, sphere, body, tex->second->width())));
     tex->second->bind(0);
     shadows.apply(program, casters, 1);
     if (sky) sky->set_sky_in_front(program);

@@ -53,6 +53,9 @@ public:
     const GlTexture* texture(uint16_t body_id) const;
     // The matrix body.frag takes the map's coordinates with (shared/sphere_view.glsl, body_map_uv).
     static glm::mat3 channel_to_body(const ChannelView& view, const BodyState& state);
+    // The map level one pixel spans at the disc's centre, for a map map_width texels around: a small
+    // disc samples a coarser level. The atmosphere's look-up takes the same when it draws the surface.
+    static double map_lod(const ChannelView& view, const SphereView& sphere, const BodyConfig& body, int map_width);
 
 private:
     // The body.frag variants the scene needs, by bits (body_pass.cpp, variants_needed): with

@@ -173,6 +173,7 @@ namespace {
 void set_handover(PlanetLight& light, double rho, const PlanetLightInputs& in) {
     light.disc_weight = glm::smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
     light.point_sigma_rad = std::sqrt(in.psf_sigma_rad * in.psf_sigma_rad + 0.25 * rho * rho);
+    light.supersample = rho < 4.0 * in.handover_start_rad ? kSmallDiscSupersample : 1;
 }
 
 }  // namespace
@@ -220,6 +221,18 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
     set_handover(light, rho, in);
     light.small_disc = rho < 8.0 * in.handover_start_rad;
     return light;
+}
+
+PlanetLight with_air(const PlanetLight& light, const glm::dvec3& air_flux_rgb) {
+    PlanetLight out;
+    out.supersample = light.supersample;  // the air's draw takes more rays a pixel
+    if (light.disc_weight >= 1.0) return out;
+    out = light;
+    out.flux = luminance(air_flux_rgb);
+    if (out.flux > 0.0) out.unit_color = air_flux_rgb / out.flux;
+    out.disc_scale = 0.0;
+    out.shine_lit = glm::dvec3(0.0);
+    return out;
 }
 
 }  // namespace cupola

@@ -33,6 +33,12 @@
 
 namespace cupola {
 
+// A disc under 4 x handover_start drawn by a shader that cannot antialias it analytically (a
+// planet's air: atmosphere_lookup.frag; rings: ring.frag) takes n x n rays a pixel
+// (PlanetLight::supersample): at 8 to 16 pixels in radius one ray a pixel left the Earth's light
+// 3 to 6 % off from frame to frame.
+constexpr int kSmallDiscSupersample = 4;
+
 struct PlanetLight {
     double flux = 0.0;         // scene units x sr at the camera: the whole body
     double disc_scale = 1.0;   // multiplies the Lambert disc's radiance (body.frag u_lit)
@@ -42,6 +48,9 @@ struct PlanetLight {
     // Small enough on every channel (below 8 x handover_start) for body.frag to antialias its limb
     // and shade a limb pixel inside it; a large disc keeps the exact per-pixel hit.
     bool small_disc = false;
+    // Rays a pixel along each axis for the air's and the rings' draws: kSmallDiscSupersample below
+    // 4 x handover_start, else 1.
+    int supersample = 1;
     // The surface's lunar-Lambert weight L at this phase (0: Lambert; shared/surface_photometry.glsl).
     double limb_weight = 0.0;
     // Light from the body a moon circles (earthshine): its irradiance here times albedo / pi, the
@@ -83,6 +92,13 @@ struct PlanetLightInputs {
 };
 
 PlanetLight planet_light(const BodyConfig& body, const BodyState& state, const PlanetLightInputs& in);
+
+// A planet with air (the Earth) as its air draws it: a resolved disc (weight 1) is the air's alone
+// (the default light: no point, no scale); in the handover the air's draw (AtmospherePass) fades
+// with the weight while the point carries the rest of air_flux_rgb (its light and colour), the air's own disc
+// integrated for a distant observer (AtmospherePass::point_flux), so that point and disc carry the same energy. The air
+// relights the surface itself, so the body pass's own colour (disc_scale 0) does not leak through the fading air.
+PlanetLight with_air(const PlanetLight& light, const glm::dvec3& air_flux_rgb);
 
 // The irradiance at `lit_position_m` from `source` reflecting sunlight: its V magnitude from its
 // phase curve seen from there when it has one (the Earth: Mallama & Hilton 2018), else a Lambert

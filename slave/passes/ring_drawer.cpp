@@ -69,6 +69,7 @@ void RingDrawer::draw(const ChannelView& view, const FrameBody& fb, const SunLig
     p.set("u_profile_texels", static_cast<float>(r.profile.tau.size()));
     p.set("u_lit", glm::vec3(body.rings.tint) * static_cast<float>(radiance_per_iof * fb.light.disc_weight));
     p.set("u_limb_aa", fb.light.small_disc ? 1 : 0);
+    p.set("u_supersample", fb.light.supersample);
     r.texture->bind(0);
     vao_.bind();
     glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);

@@ -5,10 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 #include <string>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "config/cluster_config.hpp"
 #include "image/frame_image.hpp"
+#include "wire/snapshot.hpp"
 
 namespace cupola::test {
 
@@ -19,6 +23,23 @@ inline ChannelConfig straight_channel(double left_deg, double right_deg, int wid
     ch.width = width;
     ch.height = height;
     return ch;
+}
+
+// Body 1 at the origin (pole +Z) and body 0 (the Sun) sun_distance_m along +X; the camera at
+// delta_m along a direction at phase_deg from the Sun's in the equatorial plane, looking at body 1
+// with +Z up; no exposure (every point drawn, its sprite out to a fixed reach).
+inline Snapshot phase_view(double phase_deg, double sun_distance_m, double delta_m) {
+    const double a = phase_deg * std::numbers::pi / 180.0;
+    const glm::dvec3 to_camera(std::cos(a), std::sin(a), 0.0);
+    Snapshot s;
+    s.bodies.resize(2);
+    s.bodies[1].id = 1;
+    s.bodies[0].position_m = glm::dvec3(sun_distance_m, 0.0, 0.0);
+    s.camera_position_m = to_camera * delta_m;
+    s.settings.exposure = 0.0f;
+    const glm::dvec3 back = to_camera, up(0, 0, 1), right = glm::normalize(glm::cross(up, back));
+    s.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
+    return s;
 }
 
 // The frame's light: each pixel's radiance (luminance) times its solid angle.
