@@ -11,7 +11,9 @@
 //   saturn  (asked for by --views, with the solar-system scene) as night, with Saturn and its rings
 //           8 Saturn radii ahead, lit from behind the camera;
 //   moonlit (asked for by --views) as night, with the Moon nearly full 40 degrees up in the view:
-//           the air lit by the Moon too.
+//           the air lit by the Moon too;
+//   far-earth (asked for by --views) the Earth 1.2 degrees in radius from 300 000 km: a small disc
+//           of air drawn with 4 x 4 rays a pixel, and its point.
 // The snapshot is finished the way the master does it (finish_frame_snapshot: automatic
 // exposure, glare sources). In the same process and rounds, a trivial full-screen pass (one
 // texel fetched per pixel into an RGBA16F target of the channel's size) is timed, and every cost
@@ -105,6 +107,10 @@ const std::vector<ViewSpec>& all_views() {
         // As night, with the Moon nearly full 40 degrees up in the view: the moonlit sky
         // (common/atmosphere/moonlit_sky.hpp), its own sky-view table and a second look-up per pixel.
         {"moonlit", 2.0, 100.0, 20.0, 280.0, -30.0, 100.0, 40.0},
+        // From about the Moon's distance, straight down at the Earth, 1.2 degrees in radius (14
+        // pixels at 1024): between point and disc, its air drawn with 4 x 4 rays a pixel
+        // (PlanetLight::supersample) and its point beside it.
+        {"far-earth", 2.976e8, 0.0, -89.9, 90.0, 30.0, 0.0, -10.0},
     };
     return v;
 }
@@ -433,7 +439,8 @@ int main(int argc, char** argv) {
     app.add_option("--model", o.model, "atmosphere quality level (default: the scene's)");
     app.add_option("--scene", o.scene_file, "scene file (bodies named sun, earth and moon)")->check(CLI::ExistingFile);
     app.add_flag("--read-back", o.read_back, "also read every frame back as RGBA32F (what a files sink needs)");
-    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night, saturn, moonlit")->delimiter(',');
+    app.add_option("--views", o.views, "views to run: day, sunset, orbit, night, saturn, moonlit, far-earth")
+        ->delimiter(',');
     app.add_option("--device", o.device, "EGL device index (-1: the first that works, else surfaceless)");
     app.add_option("--images", o.images, "also write DIR/frame-cost-<view>.png")->check(CLI::ExistingDirectory);
     if (auto rc = parse_command_line(app, argc, argv, "frame_cost")) return *rc;

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <bit>
+#include <chrono>
+#include <thread>
 #include <sodium.h>
 
 #include "net/key_file.hpp"
@@ -456,6 +458,42 @@ void expect_every_slave_receives(Transport t, uint16_t port) {
 TEST(Sockets, MulticastReachesEverySlave) { expect_every_slave_receives(Transport::Multicast, 47710); }
 TEST(Sockets, BroadcastReachesEverySlave) { expect_every_slave_receives(Transport::Broadcast, 47730); }
 TEST(Sockets, UnicastReachesEverySlave) { expect_every_slave_receives(Transport::Unicast, 47750); }
+
+// A datagram read late carries how long it waited (the kernel's receive timestamp), so that a
+// network duplicate read by a process that was busy rendering is still taken for a duplicate.
+TEST(Sockets, ADatagramReadLateKnowsHowLongItWaited) {
+    UdpSocket rx, tx;
+    rx.bind(make_address("127.0.0.1", 0));
+    const uint8_t byte = 1;
+    tx.send_to(make_address("127.0.0.1", rx.local_port()), &byte, 1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const auto d = rx.receive(1000);
+    ASSERT_TRUE(d);
+    EXPECT_GE(d->queued_ns, 250'000'000u);
+    EXPECT_LT(d->queued_ns, 60'000'000'000u);
+}
+
+TEST(Sockets, ADuplicateReadLongAfterItArrivedIsADuplicateNotAReplay) {
+    ClusterConfig cfg = socket_config(Transport::Unicast, 47790, 1);
+    const AuthKey key = key_of(8);
+    WireEndpoint slave = open_slave_endpoint(cfg, cfg.channels[0], key, new_session_nonce());
+    UdpSocket network;
+    const sockaddr_in to = parse_host_port(cfg.channels[0].unicast_address);
+    PacketCodec master(cfg.cluster_id, key, new_session_nonce());
+    uint32_t seq = 0;
+    auto send = [&](const std::vector<uint8_t>& d) { network.send_to(to, d.data(), d.size()); };
+    send(master.encode(PacketType::Welcome, kMasterSender, 0, encode_welcome({0, 0}), 1400, &seq, slave.session())[0]);
+    ASSERT_TRUE(slave.receive(2000));
+    const auto g =
+        master.encode(PacketType::Snapshot, kMasterSender, 1, encode_snapshot(sample_snapshot(1)), 1400, &seq)[0];
+    send(g);
+    ASSERT_TRUE(slave.receive(2000));  // the first copy, read at once
+    send(g);                           // its duplicate arrives at once, and waits while the slave renders
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));  // past the 500 ms duplicate horizon
+    EXPECT_FALSE(slave.receive(200));
+    EXPECT_EQ(slave.counters().duplicates, 1u);
+    EXPECT_EQ(slave.counters().rejected[static_cast<size_t>(RejectReason::Replayed)], 0u);
+}
 
 TEST(Sockets, BadDatagramsAreDroppedAndCountedNotFatal) {
     ClusterConfig cfg = socket_config(Transport::Unicast, 47770, 1);

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstring>
+#include <ctime>
 #include <stdexcept>
 #include <system_error>
 
@@ -43,9 +45,30 @@ std::string to_string(const sockaddr_in& a) {
     return std::string(buf) + ":" + std::to_string(ntohs(a.sin_port));
 }
 
+namespace {
+
+// The time since the kernel's receive timestamp (SCM_TIMESTAMPNS, the real-time clock) of a
+// received message; 0 without one, or when the clock stepped back past it.
+uint64_t queued_since_arrival(msghdr& m) {
+    for (cmsghdr* c = CMSG_FIRSTHDR(&m); c; c = CMSG_NXTHDR(&m, c)) {
+        if (c->cmsg_level != SOL_SOCKET || c->cmsg_type != SCM_TIMESTAMPNS) continue;
+        timespec arrived{}, now{};
+        std::memcpy(&arrived, CMSG_DATA(c), sizeof arrived);
+        clock_gettime(CLOCK_REALTIME, &now);
+        const int64_t ns = (static_cast<int64_t>(now.tv_sec) - arrived.tv_sec) * 1'000'000'000LL +
+                           (static_cast<int64_t>(now.tv_nsec) - arrived.tv_nsec);
+        return ns > 0 ? static_cast<uint64_t>(ns) : 0;
+    }
+    return 0;
+}
+
+}  // namespace
+
 UdpSocket::UdpSocket() {
     fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     if (fd_ < 0) fail("socket(AF_INET, SOCK_DGRAM)");
+    const int on = 1;  // the kernel's receive timestamps (Datagram::queued_ns); without them, 0
+    ::setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
 }
 
 UdpSocket::~UdpSocket() {
@@ -124,13 +147,22 @@ std::optional<UdpSocket::Datagram> UdpSocket::receive(int timeout_ms) {
     if (r == 0) return std::nullopt;
     Datagram d;
     d.data.resize(65536);
-    socklen_t len = sizeof d.from;
-    ssize_t n = ::recvfrom(fd_, d.data.data(), d.data.size(), 0, reinterpret_cast<sockaddr*>(&d.from), &len);
+    iovec iov{d.data.data(), d.data.size()};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+    msghdr m{};
+    m.msg_name = &d.from;
+    m.msg_namelen = sizeof d.from;
+    m.msg_iov = &iov;
+    m.msg_iovlen = 1;
+    m.msg_control = control;
+    m.msg_controllen = sizeof control;
+    ssize_t n = ::recvmsg(fd_, &m, 0);
     if (n < 0) {
         if (errno == EINTR || errno == EAGAIN || errno == ECONNREFUSED) return std::nullopt;
-        fail("recvfrom");
+        fail("recvmsg");
     }
     d.data.resize(static_cast<size_t>(n));
+    d.queued_ns = queued_since_arrival(m);
     return d;
 }
 

@@ -37,6 +37,10 @@ public:
     struct Datagram {
         std::vector<uint8_t> data;
         sockaddr_in from{};
+        // How long it waited in the socket's queue before this read (from the kernel's receive
+        // timestamp); 0 when the kernel gave none. A process busy elsewhere (a slave rendering)
+        // reads late, and what arrived together must still count as arriving together.
+        uint64_t queued_ns = 0;
     };
     // Waits up to timeout_ms (0: poll); nothing when no datagram arrived in time.
     std::optional<Datagram> receive(int timeout_ms);

@@ -113,7 +113,9 @@ std::optional<ReceivedMessage> WireEndpoint::receive(int timeout_ms) {
             continue;
         }
         const PacketHeader& h = r.packet->header;
-        const GuardVerdict g = guard_.check(h, monotonic_ns());
+        // As of its arrival, not of this read: a network duplicate that waited in the queue
+        // while this process rendered is still a duplicate, not a replay.
+        const GuardVerdict g = guard_.check(h, monotonic_ns() - d->queued_ns);
         switch (g.kind) {
             case GuardVerdict::Rejected:
                 count_reject(g.reason, d->from);
