@@ -244,11 +244,14 @@ void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
         if (it.body->kind == BodyKind::Star) continue;
         in.map_mean_rgb = painter->bodies().map_mean_rgb(it.body->id);
         in.map_grid = painter->bodies().map_grid(it.body->id);
+        if (it.body->atmosphere.present) {  // its light summed only while it is a point (with_air)
+            const PlanetLight handover = handover_light(*it.body, *it.state, in);
+            it.light = with_air(handover, handover.disc_weight < 1.0 ? air_point_flux(f, it, in) : glm::dvec3(0.0));
+            continue;
+        }
         const PlanetShine shine = planetshine_on(f, *it.body, *it.state);
         in.shine = &shine;
         it.light = planet_light(*it.body, *it.state, in);
-        if (it.body->atmosphere.present)
-            it.light = with_air(it.light, it.light.disc_weight < 1.0 ? air_point_flux(f, it, in) : glm::dvec3(0.0));
     }
 }
 

@@ -174,6 +174,7 @@ void set_handover(PlanetLight& light, double rho, const PlanetLightInputs& in) {
     light.disc_weight = glm::smoothstep(in.handover_start_rad, 2.0 * in.handover_start_rad, rho);
     light.point_sigma_rad = std::sqrt(in.psf_sigma_rad * in.psf_sigma_rad + 0.25 * rho * rho);
     light.supersample = rho < 4.0 * in.handover_start_rad ? kSmallDiscSupersample : 1;
+    light.small_disc = rho < 8.0 * in.handover_start_rad;
 }
 
 }  // namespace
@@ -185,9 +186,7 @@ PlanetLight star_light(const BodyConfig& b, const BodyState& s, const PlanetLigh
     if (d <= b.radius_m || tint <= 0.0) return light;
     light.unit_color = glm::dvec3(b.tint) / tint;
     light.flux = atmosphere::sun_irradiance_scene_units(b.radiance, b.radius_m, b.limb_darkening_u, d) * tint;
-    const double rho = std::asin(b.radius_m / d);
-    set_handover(light, rho, in);
-    light.small_disc = rho < 8.0 * in.handover_start_rad;
+    set_handover(light, std::asin(b.radius_m / d), in);
     return light;
 }
 
@@ -217,9 +216,15 @@ PlanetLight planet_light(const BodyConfig& b, const BodyState& s, const PlanetLi
         light.disc_scale = disc_scale_for(b, s, g, in, model);
     }
     set_planetshine(light, b, s, g, in);
-    const double rho = std::asin(std::min(b.radius_m / (g.observer_distance_au * kAstronomicalUnit_m), 1.0));
-    set_handover(light, rho, in);
-    light.small_disc = rho < 8.0 * in.handover_start_rad;
+    set_handover(light, std::asin(std::min(b.radius_m / (g.observer_distance_au * kAstronomicalUnit_m), 1.0)), in);
+    return light;
+}
+
+PlanetLight handover_light(const BodyConfig& b, const BodyState& s, const PlanetLightInputs& in) {
+    PlanetLight light;
+    const double d = glm::length(in.camera_position_m - s.position_m);
+    if (in.sun_irradiance_1au <= 0.0 || d <= b.radius_m) return light;  // as planet_light
+    set_handover(light, std::asin(b.radius_m / d), in);
     return light;
 }
 

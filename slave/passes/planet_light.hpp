@@ -99,6 +99,9 @@ PlanetLight planet_light(const BodyConfig& body, const BodyState& state, const P
 // integrated for a distant observer (AtmospherePass::point_flux), so that point and disc carry the same energy. The air
 // relights the surface itself, so the body pass's own colour (disc_scale 0) does not leak through the fading air.
 PlanetLight with_air(const PlanetLight& light, const glm::dvec3& air_flux_rgb);
+// The part of planet_light that with_air keeps: from disc to point (disc weight, point width,
+// supersampling, small disc) by the body's angular size alone, without its light.
+PlanetLight handover_light(const BodyConfig& body, const BodyState& state, const PlanetLightInputs& in);
 
 // The irradiance at `lit_position_m` from `source` reflecting sunlight: its V magnitude from its
 // phase curve seen from there when it has one (the Earth: Mallama & Hilton 2018), else a Lambert
