@@ -17,11 +17,34 @@ TEST(SequenceWindow, FreshReorderedDuplicateAndReplay) {
     SequenceWindow w(500 * kMs);
     EXPECT_EQ(w.check(10, 1 * kMs), V::Fresh);
     EXPECT_EQ(w.check(12, 2 * kMs), V::Fresh);
-    EXPECT_EQ(w.check(11, 3 * kMs), V::Reordered);   // late but never seen
-    EXPECT_EQ(w.check(11, 4 * kMs), V::Duplicate);   // the network sent it twice
-    EXPECT_EQ(w.check(12, 900 * kMs), V::Replayed);  // the same datagram long after
+    EXPECT_EQ(w.check(11, 3 * kMs), V::Reordered);  // late but never seen
+    EXPECT_EQ(w.check(11, 4 * kMs), V::Duplicate);  // the network sent it twice
+    for (uint32_t s = 13; s < 13 + SequenceWindow::kDuplicateArrivals; ++s) EXPECT_EQ(w.check(s, 5 * kMs), V::Fresh);
+    EXPECT_EQ(w.check(12, 900 * kMs), V::Replayed);  // the same datagram long after, many datagrams later
     EXPECT_EQ(w.check(9, 901 * kMs), V::Reordered);  // older than the first, still in the window
-    EXPECT_EQ(w.check(13, 902 * kMs), V::Fresh);
+    EXPECT_EQ(w.check(100, 902 * kMs), V::Fresh);
+}
+
+// A receiver busy rendering reads the network's copy long after the first: it is still a
+// duplicate, since almost nothing of its sender came between the two.
+TEST(SequenceWindow, ARepeatReadLateButRightAfterItsFirstCopyIsADuplicate) {
+    SequenceWindow w(500 * kMs);
+    EXPECT_EQ(w.check(1, 0), V::Fresh);
+    EXPECT_EQ(w.check(2, 0), V::Fresh);
+    for (uint32_t s = 3; s < 3 + SequenceWindow::kDuplicateArrivals - 1; ++s) EXPECT_EQ(w.check(s, 1 * kMs), V::Fresh);
+    EXPECT_EQ(w.check(2, 2000 * kMs), V::Duplicate);  // kDuplicateArrivals - 1 between
+    EXPECT_EQ(w.check(1, 2000 * kMs), V::Replayed);   // kDuplicateArrivals + 1 between
+}
+
+// One copy stamped by the kernel at its arrival, the other at the read when the kernel had not
+// turned its stamps on yet: the second copy may look older than the first. Never a replay.
+TEST(SequenceWindow, ARepeatThatLooksOlderThanItsFirstCopyIsADuplicate) {
+    SequenceWindow w(500 * kMs);
+    EXPECT_EQ(w.check(1, 900 * kMs), V::Fresh);
+    for (uint32_t s = 2; s < 2 + 2 * SequenceWindow::kDuplicateArrivals; ++s)
+        EXPECT_EQ(w.check(s, 901 * kMs), V::Fresh);
+    EXPECT_EQ(w.check(1, 899 * kMs), V::Duplicate);
+    EXPECT_EQ(w.check(2, 2000 * kMs), V::Replayed);
 }
 
 TEST(SequenceWindow, OlderThanTheWindowIsAReplay) {
@@ -80,12 +103,14 @@ TEST(SessionGuard, ASlaveTrustsAMasterSessionOnlyAfterItsWelcome) {
     EXPECT_EQ(g.peer_session(kMasterSender), m1);
     EXPECT_EQ(g.check(header(PacketType::Snapshot, kMasterSender, m1, 3), 0).kind, GuardVerdict::Accept);
     EXPECT_EQ(g.check(header(PacketType::Snapshot, kMasterSender, m1, 3), 1).kind, GuardVerdict::Duplicate);
+    for (uint32_t s = 4; s < 4 + SequenceWindow::kDuplicateArrivals; ++s)
+        EXPECT_EQ(g.check(header(PacketType::Snapshot, kMasterSender, m1, s), 2 * kMs).kind, GuardVerdict::Accept);
     EXPECT_EQ(g.check(header(PacketType::Snapshot, kMasterSender, m1, 3), 900 * kMs).reason, RejectReason::Replayed);
 
     // The master restarts (m2) and welcomes us: m1 is over, its packets are stale from now on.
     EXPECT_EQ(g.check(header(PacketType::Snapshot, kMasterSender, m2, 0), 0).kind, GuardVerdict::Unverified);
     EXPECT_EQ(g.check(header(PacketType::Welcome, kMasterSender, m2, 1, slave), 0).kind, GuardVerdict::Opened);
-    const GuardVerdict old = g.check(header(PacketType::Snapshot, kMasterSender, m1, 4), 0);
+    const GuardVerdict old = g.check(header(PacketType::Snapshot, kMasterSender, m1, 40), 0);
     EXPECT_EQ(old.kind, GuardVerdict::Rejected);
     EXPECT_EQ(old.reason, RejectReason::StaleSession);
     // A replayed welcome of the old session cannot bring it back.

@@ -39,7 +39,9 @@ public:
         sockaddr_in from{};
         // How long it waited in the socket's queue before this read (from the kernel's receive
         // timestamp); 0 when the kernel gave none. A process busy elsewhere (a slave rendering)
-        // reads late, and what arrived together must still count as arriving together.
+        // reads late, and what arrived together must still count as arriving together. Linux
+        // turns its stamps on a moment after the first socket asks; what arrives before then is
+        // stamped at the read (queued_ns about 0).
         uint64_t queued_ns = 0;
     };
     // Waits up to timeout_ms (0: poll); nothing when no datagram arrived in time.

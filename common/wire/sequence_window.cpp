@@ -5,9 +5,18 @@ namespace cupola {
 void SequenceWindow::mark(uint32_t sequence, uint64_t now_ns) {
     seen_.set(sequence % kSize);
     seen_at_[sequence % kSize] = now_ns;
+    seen_arrival_[sequence % kSize] = arrivals_;
+}
+
+SequenceWindow::Verdict SequenceWindow::repeat(uint32_t slot, uint64_t now_ns) const {
+    const uint64_t first_ns = seen_at_[slot];
+    const uint64_t elapsed_ns = now_ns > first_ns ? now_ns - first_ns : 0;
+    const uint64_t between = arrivals_ - seen_arrival_[slot] - 1;
+    return elapsed_ns < horizon_ns_ || between < kDuplicateArrivals ? Verdict::Duplicate : Verdict::Replayed;
 }
 
 SequenceWindow::Verdict SequenceWindow::check(uint32_t sequence, uint64_t now_ns) {
+    ++arrivals_;
     if (!started_) {
         started_ = true;
         highest_ = sequence;
@@ -28,7 +37,7 @@ SequenceWindow::Verdict SequenceWindow::check(uint32_t sequence, uint64_t now_ns
     }
     if (-ahead >= static_cast<int64_t>(kSize)) return Verdict::Replayed;  // older than the window
     const uint32_t slot = sequence % kSize;
-    if (seen_.test(slot)) return now_ns - seen_at_[slot] < horizon_ns_ ? Verdict::Duplicate : Verdict::Replayed;
+    if (seen_.test(slot)) return repeat(slot, now_ns);
     mark(sequence, now_ns);
     return Verdict::Reordered;
 }
