@@ -51,14 +51,20 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
 
 void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
                            const SceneConfig& scene, uint64_t frame, double frame_interval_s,
-                           const AutoExposure* auto_exposure, const GlareSources* glare) {
+                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye) {
     snap.frame = frame;
-    if (settings.exposure)
-        snap.settings.exposure = *settings.exposure;
-    else
-        snap.settings.exposure =
-            static_cast<float>(auto_exposure && cluster.output.auto_exposure.enabled ? auto_exposure->exposure(snap)
-                                                                                     : cluster.output.exposure);
+    ExposureDecision d;
+    d.exposure = cluster.output.exposure;
+    // The eye adapts whether or not the show fixes the exposure, so that a return to the
+    // automatic exposure finds it where the view has kept it.
+    if (auto_exposure && cluster.output.auto_exposure.enabled) d = auto_exposure->decide(snap, eye, frame_interval_s);
+    if (settings.exposure) {  // a fixed exposure (a show's or the presenter's): linear, no curve
+        d.exposure = *settings.exposure;
+        d.tone_white = 0.0;
+    }
+    snap.settings.exposure = static_cast<float>(d.exposure);
+    snap.settings.tone_white = static_cast<float>(d.tone_white);
+    snap.settings.adapted_cd_m2 = static_cast<float>(d.adapted_cd_m2);
     snap.settings.star_magnitude_limit =
         settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
     if (glare && scene.glare.enabled) {
@@ -337,7 +343,7 @@ bool MasterNode::Loop::frame(uint64_t f) {
     const DirectedFrame directed = director.frame(f, input_hub.combined());
     Snapshot snap = directed.snapshot;
     finish_frame_snapshot(snap, directed.settings, cluster, node.scene_, f, director.frame_interval_s(),
-                          node.auto_exposure_.get(), node.glare_sources_.get());
+                          node.auto_exposure_.get(), node.glare_sources_.get(), &node.eye_);
     if (f > start_frame) glare_sharing.apply(snap, previous_reports, f - 1);
     std::vector<uint8_t> payload = encode_snapshot(snap);
     const std::string hash = snapshot_hash(payload);
@@ -381,7 +387,9 @@ nlohmann::json MasterNode::Loop::frame_event(const Snapshot& snap, const std::st
         {"camera_q",
          {snap.camera_orientation.w, snap.camera_orientation.x, snap.camera_orientation.y, snap.camera_orientation.z}},
         {"flags", snap.settings.flags},
-        {"exposure", snap.settings.exposure}};
+        {"exposure", snap.settings.exposure},
+        {"tone_white", snap.settings.tone_white},
+        {"adapted_cd_m2", snap.settings.adapted_cd_m2}};
     if (input_ms) fe["input_latency_ms"] = *input_ms;
     return fe;
 }

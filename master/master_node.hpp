@@ -39,11 +39,13 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
                              const GlareSources* glare = nullptr);
 
 // What the master adds to a frame's simulation state (show or live): the frame index, exposure
-// (the show's or a control override, else the cluster's fixed or automatic one), the star limit,
-// the glare phase (from the frame index, so it runs on in every mode) and the glare sources.
+// (the show's or a control override, else the cluster's fixed or automatic one) with the display
+// white and the eye's adaptation, the star limit, the glare phase (from the frame index, so it
+// runs on in every mode) and the glare sources. `eye`: the adaptation carried from the previous
+// frame (the master's); none: the eye adapted to this frame (make_frame_snapshot).
 void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
                            const SceneConfig& scene, uint64_t frame, double frame_interval_s,
-                           const AutoExposure* auto_exposure, const GlareSources* glare);
+                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye = nullptr);
 
 class MasterNode {
 public:
@@ -63,6 +65,7 @@ private:
     std::unique_ptr<SceneAtmospheres> atmospheres_;  // when auto exposure or glare needs them
     std::unique_ptr<AutoExposure> auto_exposure_;
     std::unique_ptr<GlareSources> glare_sources_;  // when the scene has glare
+    EyeAdaptation eye_;                            // carried from frame to frame (auto exposure)
     std::atomic<bool> stop_requested_{false};
 };
 

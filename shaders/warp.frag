@@ -1,7 +1,8 @@
 #version 450 core
 // The projector pass (slave/output/warp_pass.hpp says why it is a per-pixel lookup and how the
 // footprint filter works): raster pixel -> bilinear grid lookup -> content (u, v), filtered over
-// the pixel's footprint -> exposure -> blend and black lift -> encode (shared/projector_blend.glsl).
+// the pixel's footprint -> exposure -> display curve (shared/tone_curve.glsl) -> gamut map, blend
+// and black lift -> encode (shared/projector_blend.glsl).
 // Conventions: common/calibration/projector_warp.hpp (raster y from the top, grid in fill layout,
 // content v up).
 uniform sampler2D u_content;  // linear radiance, v up (texture row 0 = content bottom)
@@ -11,6 +12,7 @@ uniform sampler2D u_beta;
 uniform vec2 u_raster;        // raster width, height in pixels
 uniform vec2 u_content_size;  // content width, height in texels
 uniform float u_exposure;
+uniform float u_tone_white;   // the display curve's white (shared/tone_curve.glsl); 0: none
 uniform float u_gamma;
 uniform int u_encode;         // PROJECTOR_ENCODE_*
 uniform int u_max_taps;       // footprint box filter: most taps per axis (1: one tap)
@@ -81,7 +83,7 @@ void main() {
     float alpha = textureLod(u_alpha, t, 0.0).r;
     float beta = textureLod(u_beta, t, 0.0).r;
     // Not shown: black content, still lifted to the projector's black level like every pixel.
-    vec3 content = w.shown ? filtered_content(w) * u_exposure : vec3(0.0);
+    vec3 content = w.shown ? tone_curve(filtered_content(w) * u_exposure, u_tone_white) : vec3(0.0);
     vec3 c = projector_blend(content, alpha, w.intensity, beta);
     out_linear = vec4(c, 1.0);
     out_encoded = vec4(projector_encode(c, u_gamma, u_encode), 1.0);

@@ -48,8 +48,9 @@ TEST(AutoExposure, FollowsTheSkyFromNoonToNight) {
     EXPECT_GT(sunset, 3.0 * noon);
     EXPECT_GT(night, 100.0 * sunset);
     EXPECT_DOUBLE_EQ(night, f.cluster.output.auto_exposure.max_exposure);  // a black sky: the clamp
-    // Noon daylight over the ground is thousands of cd/m^2 in this physical scene: key / L.
-    const double mean = ae.mean_luminance(with_sun_at(ground, f.scene, 20.0));
+    // Noon daylight over the ground is thousands of cd/m^2 in this physical scene: key / L, with
+    // L the log-average of the view (the key is the configured one in daylight).
+    const double mean = ae.metered_luminance(with_sun_at(ground, f.scene, 20.0));
     EXPECT_GT(mean, 1000.0);
     EXPECT_LT(mean, 50000.0);
     EXPECT_NEAR(noon, f.cluster.output.auto_exposure.key / mean, 1e-12 * noon);
@@ -85,10 +86,10 @@ TEST(AutoExposure, OpensUpInTotality) {
     Snapshot snap = ShowScript({k}, 1.0).evaluate(0.0, f.scene);
     const AutoExposure ae(f.cluster, f.scene);
     snap.settings.flags = with_shadow_mode(0, ShadowMode::Off);
-    const double off = ae.mean_luminance(snap);
+    const double off = ae.metered_luminance(snap);
     snap.settings.flags = with_shadow_mode(0, ShadowMode::Exact);
-    const double total = ae.mean_luminance(snap);
-    std::printf("mean luminance at greatest eclipse: shadows off %.4g, exact %.4g\n", off, total);
+    const double total = ae.metered_luminance(snap);
+    std::printf("metered luminance at greatest eclipse: shadows off %.4g, exact %.4g\n", off, total);
     EXPECT_GT(off, 0.0);
     EXPECT_LT(total, 1e-3 * off);
     EXPECT_GT(ae.exposure(snap), 100.0 * f.cluster.output.auto_exposure.min_exposure);

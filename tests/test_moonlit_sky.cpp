@@ -270,9 +270,9 @@ TEST(MoonlitSky, TheMastersExposureSeesTheMoonsSky) {
     day_moon_set = day;
     day_moon_set.bodies[moon].position_m = moon_set.bodies[moon].position_m;
     const AutoExposure exposure(cluster, scene);
-    const double lit = exposure.mean_luminance(night), dark = exposure.mean_luminance(moon_set);
-    const double day_lit = exposure.mean_luminance(day), day_dark = exposure.mean_luminance(day_moon_set);
-    std::printf("mean luminance: Moon up %.3g, set %.3g (exposure %.3g, %.3g); by day %.6g, %.6g\n", lit, dark,
+    const double lit = exposure.metered_luminance(night), dark = exposure.metered_luminance(moon_set);
+    const double day_lit = exposure.metered_luminance(day), day_dark = exposure.metered_luminance(day_moon_set);
+    std::printf("metered luminance: Moon up %.3g, set %.3g (exposure %.3g, %.3g); by day %.6g, %.6g\n", lit, dark,
                 exposure.exposure(night), exposure.exposure(moon_set), day_lit, day_dark);
     EXPECT_GT(lit, 10.0 * dark);
     EXPECT_LT(exposure.exposure(night), 0.5 * exposure.exposure(moon_set));

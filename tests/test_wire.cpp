@@ -50,6 +50,8 @@ Snapshot sample_snapshot(size_t bodies) {
     s.settings.star_magnitude_limit = 6.5f;
     s.settings.flags = 0xA5A5u;
     s.settings.glare_phase = 12.25f;
+    s.settings.tone_white = 3.75f;
+    s.settings.adapted_cd_m2 = 1234.5f;
     GlareSource sun;
     sun.body = 0;
     sun.direction = glm::normalize(glm::vec3(0.3f, -0.4f, 0.8f));
@@ -117,7 +119,7 @@ TEST(Snapshot, MalformedPayloadsAreRefused) {
     EXPECT_THROW(decode_snapshot(qb.data(), qb.size()), WireError);
     // A body count that the payload cannot hold.
     auto huge = good;
-    const size_t count_at = 8 + 8 + 24 + 32 + 16;
+    const size_t count_at = 8 + 8 + 24 + 32 + 24;
     huge[count_at] = 0xFF;
     huge[count_at + 1] = 0xFF;
     EXPECT_THROW(decode_snapshot(huge.data(), huge.size()), WireError);
@@ -131,6 +133,12 @@ TEST(Snapshot, MalformedPayloadsAreRefused) {
         }
         return "accepted";
     };
+    Snapshot w = sample_snapshot(1);
+    w.settings.tone_white = -1.0f;
+    EXPECT_NE(refused_field(w).find("settings.tone_white"), std::string::npos) << refused_field(w);
+    w = sample_snapshot(1);
+    w.settings.adapted_cd_m2 = std::numeric_limits<float>::infinity();
+    EXPECT_NE(refused_field(w).find("settings.adapted_cd_m2"), std::string::npos) << refused_field(w);
     Snapshot g = sample_snapshot(1);
     g.glare[0].visible_fraction = 1.5f;
     EXPECT_NE(refused_field(g).find("glare.visible_fraction"), std::string::npos) << refused_field(g);

@@ -13,7 +13,7 @@
 namespace cupola {
 
 namespace {
-constexpr int kGrid = 8;  // rays per channel side
+constexpr int kGrid = 16;  // rays per channel side
 }  // namespace
 
 // The slaves light the night sky with the drawn light of the brightest body (slave/passes/
@@ -50,26 +50,35 @@ AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scen
 
 AutoExposure::~AutoExposure() = default;
 
-double AutoExposure::mean_luminance(const Snapshot& snap) const {
-    const BodyState* sun_state = find_star(snap, *scene_);
-    if (!sun_state || !atmospheres_ || atmospheres_->empty()) return 0.0;
-    const BodyConfig& sun = scene_->bodies[sun_state->id];
-    // Directions: an 8 x 8 grid of pixel-centre rays through every channel's frustum -- exactly
-    // what the cluster renders, known to the master from the cluster config.
-    std::vector<glm::dvec3> dirs;
-    for (const auto& ch : cluster_->channels) {
-        const ChannelFrustum f = ch.frustum();
-        const glm::dmat3 to_world = glm::mat3_cast(snap.camera_orientation) *
-                                    dome_tilt_rotation(cluster_->dome.tilt_deg) * channel_rotation(ch.orientation);
+std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap) const {
+    std::vector<ChannelFrustum> frusta;
+    for (const auto& ch : cluster_->channels) frusta.push_back(ch.frustum());
+    const glm::dmat3 world_from_dome =
+        glm::mat3_cast(snap.camera_orientation) * dome_tilt_rotation(cluster_->dome.tilt_deg);
+    std::vector<MeterRay> rays;
+    for (const ChannelFrustum& f : frusta) {
+        const double dx = (f.tan_left() + f.tan_right()) / kGrid, dy = (f.tan_down() + f.tan_up()) / kGrid;
         for (int j = 0; j < kGrid; ++j)
             for (int i = 0; i < kGrid; ++i) {
-                const double x = -f.tan_left() + (i + 0.5) / kGrid * (f.tan_left() + f.tan_right());
-                const double y = -f.tan_down() + (j + 0.5) / kGrid * (f.tan_down() + f.tan_up());
-                dirs.push_back(glm::normalize(to_world * glm::dvec3(x, y, -1.0)));
+                const double x = -f.tan_left() + (i + 0.5) * dx, y = -f.tan_down() + (j + 0.5) * dy;
+                const glm::dvec3 dome_dir = glm::normalize(f.rotation() * glm::dvec3(x, y, -1.0));
+                int sharing = 0;
+                for (const ChannelFrustum& g : frusta) sharing += g.contains(dome_dir) ? 1 : 0;
+                rays.push_back({world_from_dome * dome_dir, image_plane_cell_solid_angle(x, y, dx, dy) /
+                                                                static_cast<double>(std::max(sharing, 1))});
             }
     }
+    return rays;
+}
+
+SkyMetering AutoExposure::meter(const Snapshot& snap) const {
+    const BodyState* sun_state = find_star(snap, *scene_);
+    if (!sun_state || !atmospheres_ || atmospheres_->empty()) return {};
+    const BodyConfig& sun = scene_->bodies[sun_state->id];
+    const std::vector<MeterRay> rays = meter_rays(snap);
+    std::vector<MeterSample> samples(rays.size());
+    for (size_t k = 0; k < rays.size(); ++k) samples[k].weight = rays[k].weight_sr;
     const SkySecondLight second = second_light(snap, *sun_state);  // the same for every atmosphere
-    double sum = 0.0;
     for (const auto& body : atmospheres_->bodies()) {
         const BodyState* st = find_body(snap, body->config->id);
         if (!st) continue;
@@ -86,18 +95,19 @@ double AutoExposure::mean_luminance(const Snapshot& snap) const {
         const MoonOnAir moon =
             moon_on_air(second, snap.camera_position_m, st->position_m,
                         glm::normalize(sun_state->position_m - st->position_m), au_over_sun * au_over_sun, body->model);
-        for (const glm::dvec3& v : dirs) {
+        for (size_t k = 0; k < rays.size(); ++k) {
+            const glm::dvec3& v = rays[k].dir_world;
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
             const shading::EclipseRay shadow =
                 shading::eclipse_ray(casters, glm::vec2(1.0f),
                                      glm::vec3(-to_centre + v * static_cast<double>(start.offset_m)), glm::vec3(v));
             const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr, shadow);
-            sum += body->model.to_xyz(f).y * scale;
-            if (moon.on) sum += moonlit_luminance(body->model, d, v, c_hat, moon) * scale;
+            samples[k].luminance += body->model.to_xyz(f).y * scale;
+            if (moon.on) samples[k].luminance += moonlit_luminance(body->model, d, v, c_hat, moon) * scale;
         }
     }
-    return dirs.empty() ? 0.0 : sum / static_cast<double>(dirs.size());
+    return meter_sky(samples);
 }
 
 double AutoExposure::moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,
@@ -107,12 +117,16 @@ double AutoExposure::moonlit_luminance(const atmosphere::ProductionAtmosphere& m
     return model.to_xyz(model.radiance(start, -1.0f, nullptr)).y * shading::rec709_luminance(glm::vec3(moon.ratio_rgb));
 }
 
-double AutoExposure::exposure(const Snapshot& snap) const {
+ExposureDecision AutoExposure::decide(const Snapshot& snap, EyeAdaptation* eye, double dt_s) const {
     const AutoExposureConfig& ae = cluster_->output.auto_exposure;
-    if (!ae.enabled) return cluster_->output.exposure;
-    const double mean = mean_luminance(snap);
-    const double e = mean > 0.0 ? ae.key / mean : ae.max_exposure;
-    return std::clamp(e, ae.min_exposure, ae.max_exposure);
+    if (!ae.enabled) {
+        ExposureDecision fixed;
+        fixed.exposure = cluster_->output.exposure;
+        return fixed;
+    }
+    const SkyMetering m = meter(snap);
+    const double target = adaptation_target(m);
+    return decide_exposure(m, eye ? eye->step(target, dt_s, ae) : target, ae);
 }
 
 }  // namespace cupola

@@ -1,11 +1,15 @@
 #pragma once
-// Cluster-wide automatic exposure. The master decides one exposure per frame from the state every
-// channel shares (the snapshot and the scene), so all channels tone-map identically and no seam
-// can come from exposure: the mean luminance (scene units) seen over the dome hemisphere, from the
-// production atmosphere of every body that has one (sky, lit ground, limb), under the frame's
-// eclipse shadows, with the Moon's light on the air where the slaves draw it (moonlit_sky.hpp), evaluated on the CPU by
-// the same shared code the slaves run. A pure function of the frame: no temporal adaptation, so snapshots stay
-// reproducible from the show alone.
+// Cluster-wide automatic exposure. The master decides one exposure, display white and adaptation
+// per frame from the state every channel shares (the snapshot and the scene), so all channels
+// tone-map identically and no seam can come from exposure. It meters the luminance (scene units)
+// seen along rays through every channel, weighted by the solid angle each stands for (shared
+// once between overlapping channels), from the production atmosphere of every body that has one
+// (sky, lit ground, limb), under the frame's eclipse shadows, with the Moon's light on the air
+// where the slaves draw it (moonlit_sky.hpp), evaluated on the CPU by the same shared code the
+// slaves run; exposure/sky_metering makes the log-average and highlight of it, and
+// exposure/eye_adaptation the adaptation and the exposure. The metering is a pure function of
+// the frame; the adaptation carries over from frame to frame in the master (EyeAdaptation), and
+// the snapshot carries its state so that every frame can be reproduced from the snapshots.
 #include <memory>
 #include <vector>
 
@@ -15,6 +19,8 @@
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
 #include "eclipse/shadow_casters.hpp"
+#include "exposure/eye_adaptation.hpp"
+#include "exposure/sky_metering.hpp"
 #include "wire/snapshot.hpp"
 
 namespace cupola {
@@ -26,15 +32,28 @@ public:
     AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres = nullptr);
     ~AutoExposure();
 
-    // Mean luminance (scene units) over the channels' ray grid.
-    double mean_luminance(const Snapshot& snap) const;
-    // The exposure for the frame: fixed, or key / mean luminance clamped to the configured range.
-    double exposure(const Snapshot& snap) const;
+    // The metering of the view the cluster shows (rays through every channel, solid-angle weighted).
+    SkyMetering meter(const Snapshot& snap) const;
+    // Its log-average luminance (scene units); 0 when nothing is lit.
+    double metered_luminance(const Snapshot& snap) const { return meter(snap).log_average; }
+    // The frame's exposure, white and adaptation. With `eye`, the adaptation steps on from the
+    // previous frame by dt_s; without, the eye is adapted to this frame. Auto exposure off: the
+    // fixed exposure, no display curve, no adaptation.
+    ExposureDecision decide(const Snapshot& snap, EyeAdaptation* eye = nullptr, double dt_s = 0.0) const;
+    // decide(snap).exposure: the exposure of an eye adapted to this frame.
+    double exposure(const Snapshot& snap) const { return decide(snap).exposure; }
 
 private:
     // The night sky's second light (atmosphere/moonlit_sky.hpp) as the master estimates it: the
     // brightest body with a measured phase curve, in units of the Sun's irradiance at 1 AU.
     SkySecondLight second_light(const Snapshot& snap, const BodyState& sun) const;
+    struct MeterRay {
+        glm::dvec3 dir_world;
+        double weight_sr;
+    };
+    // Rays through every channel's frustum on a grid, with the solid angle each stands for,
+    // divided among the channels that overlap there.
+    std::vector<MeterRay> meter_rays(const Snapshot& snap) const;
     // The Moon's sky along v (unit, world) in cd/m^2 per unit solar irradiance of the physical spectrum.
     static double moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,
                                     const glm::dvec3& c_hat, const MoonOnAir& moon);

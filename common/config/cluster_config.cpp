@@ -290,6 +290,9 @@ AutoExposureConfig read_auto_exposure(const JsonReader& a) {
     AutoExposureConfig ae;
     ae.enabled = a.declared_boolean("enabled");
     ae.key = a.declared_number("key");
+    ae.key_follows_adaptation = a.declared_boolean("key_follows_adaptation");
+    ae.light_adaptation_s = a.declared_number("light_adaptation_s");
+    ae.dark_adaptation_s = a.declared_number("dark_adaptation_s");
     ae.min_exposure = a.declared_number("min_exposure");
     ae.max_exposure = a.declared_number("max_exposure");
     if (ae.min_exposure > ae.max_exposure)

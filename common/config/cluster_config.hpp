@@ -42,10 +42,14 @@ struct DomeConfig {
 };
 
 // Cluster-wide automatic exposure, decided by the master from the shared scene state (see
-// common/atmosphere/auto_exposure.hpp): exposure = key / (mean scene luminance over the dome), clamped.
+// common/atmosphere/auto_exposure.hpp and common/exposure/): the eye adapts to the log-average
+// luminance of the lit view, and exposure = key / adapted luminance, clamped.
 struct AutoExposureConfig {
     bool enabled = false;
-    double key = 0.18;  // display value given to the mean luminance
+    double key = 0.18;                   // display value given to the adapted luminance
+    bool key_follows_adaptation = true;  // the key falls at night (exposure/eye_adaptation.hpp)
+    double light_adaptation_s = 1.0;     // time constant toward a brighter view
+    double dark_adaptation_s = 120.0;    // time constant toward a darker view
     double min_exposure = 1e-9;
     double max_exposure = 1e3;  // reached on a black (night, no-atmosphere) sky
 };

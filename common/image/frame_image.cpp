@@ -32,6 +32,8 @@ constexpr const char* kAttrSimTime = "cupola:sim_time";
 constexpr const char* kAttrHash = "cupola:snapshot_hash";
 constexpr const char* kAttrRenderer = "cupola:renderer";
 constexpr const char* kAttrExposure = "cupola:exposure";
+constexpr const char* kAttrToneWhite = "cupola:tone_white";
+constexpr const char* kAttrAdapted = "cupola:adapted_cd_m2";
 
 std::string fmt_double(double v) {
     char buf[64];
@@ -80,6 +82,8 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         spec.attribute(kAttrChannel, std::to_string(meta.channel_id));
         spec.attribute(kAttrFrame, std::to_string(meta.frame));
         spec.attribute(kAttrExposure, fmt_double(exposure));
+        spec.attribute(kAttrToneWhite, fmt_double(meta.tone_white));
+        spec.attribute(kAttrAdapted, fmt_double(meta.adapted_cd_m2));
     } else {
         spec.attribute(kAttrChannel, meta.channel_id);
         if (meta.frame <= static_cast<uint64_t>(std::numeric_limits<int>::max()))
@@ -87,6 +91,8 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         else
             spec.attribute(kAttrFrame, std::to_string(meta.frame));
         spec.attribute(kAttrExposure, static_cast<float>(exposure));
+        spec.attribute(kAttrToneWhite, static_cast<float>(meta.tone_white));
+        spec.attribute(kAttrAdapted, static_cast<float>(meta.adapted_cd_m2));
     }
     spec.attribute(kAttrChannelName, meta.channel_name);
     spec.attribute(kAttrSimTime, fmt_double(meta.sim_time_s));
@@ -129,7 +135,8 @@ void write_one(const fs::path& final_path, const std::string& format, const Imag
         spec.attribute("oiio:UnassociatedAlpha", 1);
         bdata.resize(n);
         for (size_t i = 0; i < n; i += 4) {
-            const glm::vec3 shown = display_color(glm::vec3(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]) * ex);
+            const glm::vec3 shown =
+                display_color(glm::vec3(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]) * ex, meta.tone_white);
             for (int c = 0; c < 3; ++c)
                 bdata[i + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(shown[c]) * 255.0f));
             bdata[i + 3] = static_cast<unsigned char>(std::lround(clamp01(image.rgba[i + 3]) * 255.0f));
@@ -254,6 +261,8 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
         exposure = recorded;
     const bool undo = display_referred || undo_exposure_always;
     const float inv_exposure = undo ? static_cast<float>(1.0 / exposure) : 1.0f;
+    double tone_white = 0.0;  // a display file's curve is undone before the exposure
+    if (!get_double_attr(spec, kAttrToneWhite, tone_white) || !(tone_white > 0.0)) tone_white = 0.0;
 
     Image img;
     img.width = w;
@@ -272,10 +281,12 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
             rgb[2] = s[2];
         }
         float* d = &img.rgba[i * 4];
-        for (int c = 0; c < 3; ++c) {
-            const float lin = display_referred ? srgb_to_linear(rgb[c]) : rgb[c];
-            d[c] = lin * inv_exposure;
-        }
+        glm::vec3 lin(rgb[0], rgb[1], rgb[2]);
+        if (display_referred)
+            lin = shading::tone_curve_inverse(
+                glm::vec3(srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2])),
+                static_cast<float>(tone_white));
+        for (int c = 0; c < 3; ++c) d[c] = lin[c] * inv_exposure;
         d[3] = alpha >= 0 ? s[alpha] : 1.0f;
     }
 
@@ -294,6 +305,8 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
         get_string_attr(spec, kAttrHash, m.snapshot_hash);
         get_string_attr(spec, kAttrRenderer, m.renderer);
         m.exposure = exposure;
+        m.tone_white = tone_white;
+        get_double_attr(spec, kAttrAdapted, m.adapted_cd_m2);
         *meta = std::move(m);
     }
     return img;
@@ -364,10 +377,10 @@ Image read_image(const std::string& path, FrameMetadata* meta) { return read_imp
 Image read_image_radiance(const std::string& path, FrameMetadata* meta) { return read_impl(path, meta, true); }
 
 // A NaN component counts as 0 (as in the EXR), the rest is mapped.
-glm::vec3 display_color(const glm::vec3& linear) {
+glm::vec3 display_color(const glm::vec3& linear, double tone_white) {
     const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
                            std::isnan(linear.z) ? 0.0f : linear.z);
-    return shading::gamut_map_to_unit_cube(finite);
+    return shading::gamut_map_to_unit_cube(shading::tone_curve(finite, static_cast<float>(tone_white)));
 }
 
 float linear_to_srgb(float linear) {

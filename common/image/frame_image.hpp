@@ -1,7 +1,8 @@
 #pragma once
 // Channel frames and domemasters on disk, written and read with OpenImageIO.
 //  - EXR: 32-bit float RGBA, linear scene radiance times exposure (no tone mapping).
-//  - PNG: 8-bit sRGB RGBA after the display transform: exposure, the gamut map into [0, 1]^3
+//  - PNG: 8-bit sRGB RGBA after the display transform: exposure, the tone curve (when the frame
+//    has a display white), the gamut map into [0, 1]^3
 //    (display_color: constant luminance and dominant wavelength, never a per-channel clip of a
 //    negative value), sRGB encode. docs/COLOR.md: the primaries (ITU-R BT.709, D65) and units.
 // Every file carries metadata attributes so that sync can be checked from the files alone:
@@ -41,6 +42,11 @@ struct FrameMetadata {
     std::string snapshot_hash;
     std::string renderer;
     double exposure = 1.0;  // read back from the file (written from the write_frame argument)
+    // The display curve's white (shaders/shared/tone_curve.glsl; 0: none), applied to PNG after
+    // the exposure and undone when a PNG is read; and the eye's adapted luminance (cd/m^2). Both
+    // from the frame's snapshot, recorded as cupola:tone_white and cupola:adapted_cd_m2.
+    double tone_white = 0.0;
+    double adapted_cd_m2 = 0.0;
 };
 
 // File name of a frame: "frame_000042.png" (six digits, more if needed).
@@ -65,10 +71,11 @@ Image read_image(const std::string& path, FrameMetadata* meta = nullptr);
 // output exposure again.
 Image read_image_radiance(const std::string& path, FrameMetadata* meta = nullptr);
 
-// The display transform used for PNG: linear_to_srgb of display_color(exposure * linear).
-// display_color: linear BT.709 RGB (any values, negative ones included) mapped into the unit cube
+// The display transform used for PNG: linear_to_srgb of display_color(exposure * linear, white).
+// display_color: linear BT.709 RGB (any values, negative ones included) through the tone curve
+// of white `tone_white` (shaders/shared/tone_curve.glsl; 0: none), then mapped into the unit cube
 // by shaders/shared/gamut_map.glsl (a NaN component counts as 0); unchanged when inside.
-glm::vec3 display_color(const glm::vec3& linear);
+glm::vec3 display_color(const glm::vec3& linear, double tone_white = 0.0);
 float linear_to_srgb(float linear);
 float srgb_to_linear(float encoded);
 

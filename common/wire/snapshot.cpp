@@ -68,7 +68,7 @@ glm::dquat get_dquat(ByteReader& r, const char* field) {
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     std::vector<uint8_t> out;
-    out.reserve(100 + s.bodies.size() * 58 + s.glare.size() * 59);
+    out.reserve(108 + s.bodies.size() * 58 + s.glare.size() * 59);
     ByteWriter w(out);
     w.u64(s.frame);
     w.f64(s.sim_time_s);
@@ -78,6 +78,8 @@ std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     w.f32(s.settings.star_magnitude_limit);
     w.u32(s.settings.flags);
     w.f32(s.settings.glare_phase);
+    w.f32(s.settings.tone_white);
+    w.f32(s.settings.adapted_cd_m2);
     w.u32(static_cast<uint32_t>(s.bodies.size()));
     for (const auto& b : s.bodies) {
         w.u16(b.id);
@@ -114,6 +116,10 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
         throw WireError("field 'settings.star_magnitude_limit' is not finite");
     s.settings.flags = r.u32("settings.flags");
     s.settings.glare_phase = finite_f(r, "settings.glare_phase");
+    s.settings.tone_white = finite_f(r, "settings.tone_white");
+    if (s.settings.tone_white < 0.0f) throw WireError("field 'settings.tone_white' must not be negative");
+    s.settings.adapted_cd_m2 = finite_f(r, "settings.adapted_cd_m2");
+    if (s.settings.adapted_cd_m2 < 0.0f) throw WireError("field 'settings.adapted_cd_m2' must not be negative");
     uint32_t nb = r.u32("body_count");
     if (nb > kMaxBodies) throw WireError("body_count " + std::to_string(nb) + " exceeds " + std::to_string(kMaxBodies));
     s.bodies.resize(nb);

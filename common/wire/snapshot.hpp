@@ -32,6 +32,11 @@ struct RenderSettings {
     float star_magnitude_limit = 6.5f;
     uint32_t flags = 0;        // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
+    // The display curve's white: the exposed luminance shown as white (shaders/shared/tone_curve.glsl);
+    // 0: no curve (a fixed exposure). And the eye's adapted luminance, cd/m^2 (0: not metered).
+    // Both decided once per frame by the master (common/exposure/eye_adaptation.hpp).
+    float tone_white = 0.0f;
+    float adapted_cd_m2 = 0.0f;
     bool operator==(const RenderSettings&) const = default;
 };
 

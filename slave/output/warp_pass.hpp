@@ -36,7 +36,8 @@
 //
 // Blend maps: alpha and beta are float textures over the whole raster, sampled bilinearly at the
 // pixel centre (any size). The per-point intensity of a Bourke mesh is interpolated with u, v.
-// Content above the projector's white (1 after exposure) clips before the blend.
+// Content after exposure goes through the display curve of the frame's white (shaders/shared/
+// tone_curve.glsl; none at a fixed exposure), then into the projector's range by the gamut map.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -68,8 +69,9 @@ public:
     // Needs a current GL 4.5 context. Draws the projector raster from the content texture (GL
     // texture name of linear RGBA32F radiance, v up: GL's row 0 at the bottom) times exposure into
     // two targets: linear (RGBA32F, after alpha and beta, before encode) and encoded (RGBA8, for
-    // the projector). Leaves the draw framebuffer bound to the encoded target.
-    void draw(unsigned content_texture, double exposure);
+    // the projector), through the display curve of white `tone_white` (0: none). Leaves the draw
+    // framebuffer bound to the encoded target.
+    void draw(unsigned content_texture, double exposure, double tone_white = 0.0);
 
     unsigned linear_framebuffer() const;
     unsigned encoded_framebuffer() const;
