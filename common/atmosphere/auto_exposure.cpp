@@ -12,9 +12,7 @@
 
 namespace cupola {
 
-namespace {
-constexpr int kGrid = 16;  // rays per channel side
-}  // namespace
+namespace {}  // namespace
 
 // The slaves light the night sky with the drawn light of the brightest body (slave/passes/
 // moonlight.hpp); for the bodies with a measured phase curve (the Moon, the planets) that light is
@@ -50,16 +48,16 @@ AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scen
 
 AutoExposure::~AutoExposure() = default;
 
-std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap) const {
+std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap, int grid) const {
     std::vector<ChannelFrustum> frusta;
     for (const auto& ch : cluster_->channels) frusta.push_back(ch.frustum());
     const glm::dmat3 world_from_dome =
         glm::mat3_cast(snap.camera_orientation) * dome_tilt_rotation(cluster_->dome.tilt_deg);
     std::vector<MeterRay> rays;
     for (const ChannelFrustum& f : frusta) {
-        const double dx = (f.tan_left() + f.tan_right()) / kGrid, dy = (f.tan_down() + f.tan_up()) / kGrid;
-        for (int j = 0; j < kGrid; ++j)
-            for (int i = 0; i < kGrid; ++i) {
+        const double dx = (f.tan_left() + f.tan_right()) / grid, dy = (f.tan_down() + f.tan_up()) / grid;
+        for (int j = 0; j < grid; ++j)
+            for (int i = 0; i < grid; ++i) {
                 const double x = -f.tan_left() + (i + 0.5) * dx, y = -f.tan_down() + (j + 0.5) * dy;
                 const glm::dvec3 dome_dir = glm::normalize(f.rotation() * glm::dvec3(x, y, -1.0));
                 int sharing = 0;
@@ -71,11 +69,11 @@ std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& sna
     return rays;
 }
 
-SkyMetering AutoExposure::meter(const Snapshot& snap) const {
+SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
     const BodyState* sun_state = find_star(snap, *scene_);
     if (!sun_state || !atmospheres_ || atmospheres_->empty()) return {};
     const BodyConfig& sun = scene_->bodies[sun_state->id];
-    const std::vector<MeterRay> rays = meter_rays(snap);
+    const std::vector<MeterRay> rays = meter_rays(snap, grid);
     std::vector<MeterSample> samples(rays.size());
     for (size_t k = 0; k < rays.size(); ++k) samples[k].weight = rays[k].weight_sr;
     const SkySecondLight second = second_light(snap, *sun_state);  // the same for every atmosphere

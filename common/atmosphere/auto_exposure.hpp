@@ -32,8 +32,12 @@ public:
     AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres = nullptr);
     ~AutoExposure();
 
-    // The metering of the view the cluster shows (rays through every channel, solid-angle weighted).
-    SkyMetering meter(const Snapshot& snap) const;
+    // Rays per channel side of the master's metering: 8 x 8 costs 2.9 ms of CPU a frame on a
+    // 4-channel dome at greatest eclipse, and its log-average stays within the error that
+    // benchmarks/master_exposure measures against a 64 x 64 grid (BENCHMARKS.md).
+    static constexpr int kMeterGrid = 8;
+    // The metering of the view the cluster shows (grid x grid rays through every channel, solid-angle weighted).
+    SkyMetering meter(const Snapshot& snap, int grid = kMeterGrid) const;
     // Its log-average luminance (scene units); 0 when nothing is lit.
     double metered_luminance(const Snapshot& snap) const { return meter(snap).log_average; }
     // The frame's exposure, white and adaptation. With `eye`, the adaptation steps on from the
@@ -51,9 +55,9 @@ private:
         glm::dvec3 dir_world;
         double weight_sr;
     };
-    // Rays through every channel's frustum on a grid, with the solid angle each stands for,
+    // Rays through every channel's frustum on a grid x grid grid, with the solid angle each stands for,
     // divided among the channels that overlap there.
-    std::vector<MeterRay> meter_rays(const Snapshot& snap) const;
+    std::vector<MeterRay> meter_rays(const Snapshot& snap, int grid) const;
     // The Moon's sky along v (unit, world) in cd/m^2 per unit solar irradiance of the physical spectrum.
     static double moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,
                                     const glm::dvec3& c_hat, const MoonOnAir& moon);
