@@ -92,8 +92,7 @@ TEST(AutoExposure, OpensUpInTotality) {
     std::printf("metered luminance at greatest eclipse: shadows off %.4g, exact %.4g\n", off, total);
     EXPECT_GT(off, 0.0);
     // What is metered in totality is the lit sky, the glow toward the horizon outside the
-    // shadow (the dark sky by the Sun lies below 1 % of its highlight): 4.7e-4 of the uneclipsed
-    // sky with the master's 8 x 8 rays, 1.5e-3 with 16 x 16.
+    // shadow (the dark sky by the Sun lies below 1 % of its highlight): 1.2e-3 of the uneclipsed sky.
     EXPECT_LT(total, 3e-3 * off);
     EXPECT_GT(ae.exposure(snap), 100.0 * f.cluster.output.auto_exposure.min_exposure);
 }

@@ -48,34 +48,63 @@ AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scen
 
 AutoExposure::~AutoExposure() = default;
 
-std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap, int grid) const {
+std::vector<AutoExposure::MeterCell> AutoExposure::grid_cells(int grid) const {
+    std::vector<MeterCell> cells;
+    for (size_t c = 0; c < cluster_->channels.size(); ++c) {
+        const ChannelFrustum f = cluster_->channels[c].frustum();
+        const double dx = (f.tan_left() + f.tan_right()) / grid, dy = (f.tan_down() + f.tan_up()) / grid;
+        for (int j = 0; j < grid; ++j)
+            for (int i = 0; i < grid; ++i)
+                cells.push_back(
+                    {static_cast<int>(c), -f.tan_left() + (i + 0.5) * dx, -f.tan_down() + (j + 0.5) * dy, dx, dy});
+    }
+    return cells;
+}
+
+std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap,
+                                                             const std::vector<MeterCell>& cells) const {
     std::vector<ChannelFrustum> frusta;
     for (const auto& ch : cluster_->channels) frusta.push_back(ch.frustum());
     const glm::dmat3 world_from_dome =
         glm::mat3_cast(snap.camera_orientation) * dome_tilt_rotation(cluster_->dome.tilt_deg);
     std::vector<MeterRay> rays;
-    for (const ChannelFrustum& f : frusta) {
-        const double dx = (f.tan_left() + f.tan_right()) / grid, dy = (f.tan_down() + f.tan_up()) / grid;
-        for (int j = 0; j < grid; ++j)
-            for (int i = 0; i < grid; ++i) {
-                const double x = -f.tan_left() + (i + 0.5) * dx, y = -f.tan_down() + (j + 0.5) * dy;
-                const glm::dvec3 dome_dir = glm::normalize(f.rotation() * glm::dvec3(x, y, -1.0));
-                int sharing = 0;
-                for (const ChannelFrustum& g : frusta) sharing += g.contains(dome_dir) ? 1 : 0;
-                rays.push_back({world_from_dome * dome_dir, image_plane_cell_solid_angle(x, y, dx, dy) /
-                                                                static_cast<double>(std::max(sharing, 1))});
-            }
+    for (const MeterCell& cell : cells) {
+        const glm::dvec3 dome_dir =
+            glm::normalize(frusta[static_cast<size_t>(cell.channel)].rotation() * glm::dvec3(cell.x, cell.y, -1.0));
+        int sharing = 0;
+        for (const ChannelFrustum& g : frusta) sharing += g.contains(dome_dir) ? 1 : 0;
+        rays.push_back({world_from_dome * dome_dir, image_plane_cell_solid_angle(cell.x, cell.y, cell.dx, cell.dy) /
+                                                        static_cast<double>(std::max(sharing, 1))});
     }
     return rays;
 }
 
-SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
+// The cells of a grid x grid metering whose lit state differs from a neighbour's in the same
+// channel: the edge of what is lit.
+std::vector<size_t> AutoExposure::edge_cells(const std::vector<bool>& lit, int grid) {
+    std::vector<size_t> out;
+    const auto g = static_cast<size_t>(grid);
+    for (size_t k = 0; k < lit.size(); ++k) {
+        const size_t i = k % g, j = k / g % g;
+        const bool edge = (i + 1 < g && lit[k + 1] != lit[k]) || (i > 0 && lit[k - 1] != lit[k]) ||
+                          (j + 1 < g && lit[k + g] != lit[k]) || (j > 0 && lit[k - g] != lit[k]);
+        if (edge) out.push_back(k);
+    }
+    return out;
+}
+
+// A cell cut into kRefine x kRefine.
+void AutoExposure::split_cell(const MeterCell& c, std::vector<MeterCell>& out) {
+    for (int j = 0; j < kRefine; ++j)
+        for (int i = 0; i < kRefine; ++i)
+            out.push_back({c.channel, c.x + ((i + 0.5) / kRefine - 0.5) * c.dx,
+                           c.y + ((j + 0.5) / kRefine - 0.5) * c.dy, c.dx / kRefine, c.dy / kRefine});
+}
+
+std::vector<double> AutoExposure::luminances(const Snapshot& snap, const std::vector<MeterRay>& rays) const {
+    std::vector<double> out(rays.size(), 0.0);
     const BodyState* sun_state = find_star(snap, *scene_);
-    if (!sun_state || !atmospheres_ || atmospheres_->empty()) return {};
     const BodyConfig& sun = scene_->bodies[sun_state->id];
-    const std::vector<MeterRay> rays = meter_rays(snap, grid);
-    std::vector<MeterSample> samples(rays.size());
-    for (size_t k = 0; k < rays.size(); ++k) samples[k].weight = rays[k].weight_sr;
     const SkySecondLight second = second_light(snap, *sun_state);  // the same for every atmosphere
     for (const auto& body : atmospheres_->bodies()) {
         const BodyState* st = find_body(snap, body->config->id);
@@ -101,11 +130,40 @@ SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
                 shading::eclipse_ray(casters, glm::vec2(1.0f),
                                      glm::vec3(-to_centre + v * static_cast<double>(start.offset_m)), glm::vec3(v));
             const glm::vec3 f = body->model.radiance(start, -1.0f, nullptr, shadow);
-            samples[k].luminance += body->model.to_xyz(f).y * scale;
-            if (moon.on) samples[k].luminance += moonlit_luminance(body->model, d, v, c_hat, moon) * scale;
+            out[k] += body->model.to_xyz(f).y * scale;
+            if (moon.on) out[k] += moonlit_luminance(body->model, d, v, c_hat, moon) * scale;
         }
     }
-    return meter_sky(samples);
+    return out;
+}
+
+// A coarse grid, then the cells at the edge of what it found lit, refined: a thin lit limb seen
+// from orbit falls between the rays of any regular grid (benchmarks/master_exposure).
+SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
+    if (!find_star(snap, *scene_) || !atmospheres_ || atmospheres_->empty()) return {};
+    const std::vector<MeterCell> cells = grid_cells(grid);
+    const std::vector<MeterRay> rays = meter_rays(snap, cells);
+    const std::vector<double> l = luminances(snap, rays);
+    std::vector<MeterSample> samples(rays.size());
+    for (size_t k = 0; k < rays.size(); ++k) samples[k] = {l[k], rays[k].weight_sr};
+    const SkyMetering coarse = meter_sky(samples);
+    std::vector<bool> lit(cells.size());
+    for (size_t k = 0; k < cells.size(); ++k)
+        lit[k] = coarse.highlight > 0.0 && l[k] >= SkyMetering::kLitContrast * coarse.highlight;
+    std::vector<bool> refined(cells.size(), false);
+    std::vector<MeterCell> fine;
+    for (size_t k : edge_cells(lit, grid)) {
+        refined[k] = true;
+        split_cell(cells[k], fine);
+    }
+    if (fine.empty()) return coarse;
+    const std::vector<MeterRay> fine_rays = meter_rays(snap, fine);
+    const std::vector<double> fine_l = luminances(snap, fine_rays);
+    std::vector<MeterSample> all;  // a refined cell's samples replace its own
+    for (size_t k = 0; k < cells.size(); ++k)
+        if (!refined[k]) all.push_back(samples[k]);
+    for (size_t k = 0; k < fine_rays.size(); ++k) all.push_back({fine_l[k], fine_rays[k].weight_sr});
+    return meter_sky(all);
 }
 
 double AutoExposure::moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,

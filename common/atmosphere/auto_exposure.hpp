@@ -51,13 +51,25 @@ private:
     // The night sky's second light (atmosphere/moonlit_sky.hpp) as the master estimates it: the
     // brightest body with a measured phase curve, in units of the Sun's irradiance at 1 AU.
     SkySecondLight second_light(const Snapshot& snap, const BodyState& sun) const;
+    static constexpr int kRefine = 4;  // an edge cell of the metering grid is cut into kRefine^2
+    struct MeterCell {
+        int channel;    // index into the cluster's channels
+        double x, y;    // centre on the channel's image plane (tangents)
+        double dx, dy;  // extent
+    };
     struct MeterRay {
         glm::dvec3 dir_world;
         double weight_sr;
     };
-    // Rays through every channel's frustum on a grid x grid grid, with the solid angle each stands for,
-    // divided among the channels that overlap there.
-    std::vector<MeterRay> meter_rays(const Snapshot& snap, int grid) const;
+    // The grid x grid cells of every channel's image plane, channel by channel, row by row.
+    std::vector<MeterCell> grid_cells(int grid) const;
+    static std::vector<size_t> edge_cells(const std::vector<bool>& lit, int grid);
+    static void split_cell(const MeterCell& c, std::vector<MeterCell>& out);
+    // A ray through each cell's centre, with the solid angle the cell stands for, divided among
+    // the channels that overlap there.
+    std::vector<MeterRay> meter_rays(const Snapshot& snap, const std::vector<MeterCell>& cells) const;
+    // The luminance along each ray, through every atmosphere (needs the scene's star).
+    std::vector<double> luminances(const Snapshot& snap, const std::vector<MeterRay>& rays) const;
     // The Moon's sky along v (unit, world) in cd/m^2 per unit solar irradiance of the physical spectrum.
     static double moonlit_luminance(const atmosphere::ProductionAtmosphere& model, double d_m, const glm::dvec3& v,
                                     const glm::dvec3& c_hat, const MoonOnAir& moon);
