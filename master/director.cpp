@@ -184,9 +184,11 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     if (exposure_override_) out.settings.exposure = *exposure_override_;
     if (star_limit_override_) out.settings.star_magnitude_limit = star_limit_override_;
     if (pattern_override_) out.settings.pattern = pattern_override_;
+    if (twinkle_override_) out.settings.twinkle = twinkle_override_;
     uint32_t& flags = out.snapshot.settings.flags;
     flags = with_shadow_mode(flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
     flags = with_alignment_pattern(flags, out.settings.pattern.value_or(AlignmentPattern::Off));
+    flags = with_twinkle_mode(flags, out.settings.twinkle.value_or(scene_.stars.twinkle));
     last_frame_ = frame;
     return out;
 }
@@ -300,6 +302,11 @@ void Director::apply_setting(const ControlCommand& cmd) {
             exposure_override_ = std::optional<float>{};
         else
             exposure_override_ = std::optional<float>(static_cast<float>(cmd.number.value()));
+    } else if (cmd.setting == "twinkle") {
+        if (cmd.value == "show")
+            twinkle_override_.reset();
+        else
+            twinkle_override_ = twinkle_mode_from_name(cmd.value);
     } else {
         if (cmd.value == "show")
             star_limit_override_.reset();

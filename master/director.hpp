@@ -101,6 +101,7 @@ private:
     std::optional<ShadowMode> shadow_override_;
     std::optional<std::optional<float>> exposure_override_;  // inner none: the cluster's exposure
     std::optional<float> star_limit_override_;
+    std::optional<TwinkleMode> twinkle_override_;       // "set twinkle": over the show's (none: the show's)
     std::optional<AlignmentPattern> pattern_override_;  // "pattern": over the show's (none: the show's)
     InputShaper shaper_;
     NavigationModel nav_;

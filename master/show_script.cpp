@@ -117,9 +117,11 @@ ShowEvent read_event(const JsonReader& e) {
     if (e.has("star_magnitude_limit"))
         ev.star_magnitude_limit = static_cast<float>(e.declared_number("star_magnitude_limit", 0.0));
     if (e.has("pattern")) ev.pattern = alignment_pattern_from_name(e.one_of("pattern", e.declared_choices("pattern")));
+    if (e.has("twinkle")) ev.twinkle = twinkle_mode_from_name(e.one_of("twinkle", e.declared_choices("twinkle")));
     e.reject_unknown_keys();
-    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit && !ev.pattern)
-        e.fail("at_s", "an event must set at least one of shadow_mode, exposure, star_magnitude_limit, pattern");
+    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit && !ev.pattern && !ev.twinkle)
+        e.fail("at_s",
+               "an event must set at least one of shadow_mode, exposure, star_magnitude_limit, pattern, twinkle");
     return ev;
 }
 
@@ -229,6 +231,7 @@ Snapshot ShowScript::evaluate(double show_time_s, const SceneConfig& scene) cons
     const ShowSettings settings = settings_at(show_time_s);
     s.settings.flags = with_shadow_mode(s.settings.flags, settings.shadow_mode.value_or(scene.shadows.mode));
     s.settings.flags = with_alignment_pattern(s.settings.flags, settings.pattern.value_or(AlignmentPattern::Off));
+    s.settings.flags = with_twinkle_mode(s.settings.flags, settings.twinkle.value_or(scene.stars.twinkle));
     return s;
 }
 
@@ -244,6 +247,7 @@ ShowSettings ShowScript::settings_at(double show_time_s) const {
             if (ev.exposure_auto) out.exposure.reset();
             if (ev.star_magnitude_limit) out.star_magnitude_limit = ev.star_magnitude_limit;
             if (ev.pattern) out.pattern = ev.pattern;
+            if (ev.twinkle) out.twinkle = ev.twinkle;
         }
     };
     for (const auto& k : keys_) {

@@ -52,6 +52,7 @@ struct ShowEvent {
     bool exposure_auto = false;     // back to the cluster's own exposure
     std::optional<float> star_magnitude_limit;
     std::optional<AlignmentPattern> pattern;  // the alignment pattern from here on (Off: the scene)
+    std::optional<TwinkleMode> twinkle;       // the stars' twinkling from here on
 };
 
 // The render settings a show asks for at a show time (events and keyframes up to then).
@@ -60,6 +61,7 @@ struct ShowSettings {
     std::optional<float> exposure;              // none: the cluster's (auto) exposure
     std::optional<float> star_magnitude_limit;  // none: the scene's limit
     std::optional<AlignmentPattern> pattern;    // none: no pattern (the scene)
+    std::optional<TwinkleMode> twinkle;         // none: the scene's stars.twinkle
 };
 
 class ShowScript {

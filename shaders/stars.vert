@@ -28,6 +28,9 @@ uniform float u_occluder_rad;   // its angular radius; <= 0: none
 uniform float u_pixel_rad;      // the widest angle a pixel spans
 uniform int u_sky_on;           // 0: no sky to judge the stars by; 1: the weight; 2: the weight
                                 // and the air in front (the sky was drawn first)
+uniform float u_twinkle_sigma_zenith;  // shared/star_twinkle.glsl; 0: steady stars
+uniform vec3 u_twinkle_zenith;         // unit, world frame; zero: every star at airmass 1
+uniform float u_twinkle_time_s;        // the snapshot's twinkle clock
 
 flat out vec3 v_color;    // flux times the unit-luminance B-V colour
 flat out vec2 v_t;        // tangent-plane point of the star
@@ -46,10 +49,18 @@ vec3 sky_factor(float weight) {
     return vec3(weight);
 }
 
+// The star's twinkle factor: a function of its index, the clock and its airmass in the world,
+// the same on every channel (slave/passes/star_pass.hpp: StarTwinkle).
+float twinkle() {
+    if (!(u_twinkle_sigma_zenith > 0.0)) return 1.0;
+    float airmass = dot(u_twinkle_zenith, u_twinkle_zenith) > 0.0 ? twinkle_airmass(dot(a_dir, u_twinkle_zenith)) : 1.0;
+    return twinkle_factor(uint(gl_VertexID), u_twinkle_time_s, twinkle_sigma(u_twinkle_sigma_zenith, airmass));
+}
+
 void main() {
     vec3 d = u_world_to_channel * a_dir;
     float weight = sky_weight();
-    v_color = sky_factor(weight) * a_flux * bv_to_linear_srgb(a_bv);
+    v_color = sky_factor(weight) * twinkle() * a_flux * bv_to_linear_srgb(a_bv);
     gl_Position = u_projection * vec4(d, 1.0);
     float zc = min(d.z, -1e-3);
     float tx = d.x / -zc;

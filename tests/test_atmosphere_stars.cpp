@@ -431,6 +431,59 @@ TEST(AtmosphereStars, AStarFadingOnTheEdgeBetweenTwoChannelsShowsAlikeInBoth) {
     EXPECT_GT(halves[1], 0.3 * w * full);
 }
 
+// A twinkling star (shaders/shared/star_twinkle.glsl) on the edge between two channels twinkles
+// alike in both, frame after frame: each channel's half is the steady half times one factor, whose
+// logarithm is linear in the noise the CPU computes from the star's index and the clock alone.
+// Switched off, the frames are the steady frames, bit for bit, whatever the clock.
+TEST(AtmosphereStars, ATwinklingStarOnTheEdgeBetweenTwoChannelsTwinklesAlikeInBoth) {
+    const glm::dvec3 zenith(0.0, 0.0, 1.0);
+    const SceneConfig scene = make_scene("twinkle_edge", "sky-view", {zenith});
+    ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 0.0, 30.0, 30.0});
+    cluster.channels.push_back(cluster.channels[0]);
+    cluster.channels[1].name = "right";
+    cluster.channels[1].fov = {0.0, 30.0, 30.0, 30.0};
+    Snapshot s = snapshot(2.0, sun_at_zenith_deg(130.0));  // night
+    const std::vector<float> clocks{0.0f, 0.04f, 0.09f, 0.17f, 0.26f, 0.43f, 0.71f, 1.3f};
+    context();
+    std::vector<double> factor[2];
+    for (int c = 0; c < 2; ++c) {
+        const ChannelConfig& ch = cluster.channels[static_cast<size_t>(c)];
+        SceneRenderer r(cluster, ch, scene);
+        s.settings.flags = with_twinkle_mode(0, TwinkleMode::Off);
+        const double steady = each_star_light(r, ch.frustum(), s, {1.0})[0];
+        ASSERT_GT(steady, 0.0);
+        s.settings.flags = with_twinkle_mode(0, TwinkleMode::On);
+        for (float t : clocks) {
+            s.settings.twinkle_time_s = t;
+            factor[c].push_back(each_star_light(r, ch.frustum(), s, {1.0})[0] / steady);
+        }
+        // Off: bit-identical frames at two clocks.
+        s.settings.flags = with_twinkle_mode(0, TwinkleMode::Off);
+        s.settings.exposure = 1e3f;
+        s.settings.twinkle_time_s = 0.0f;
+        const Image a = r.render(s);
+        s.settings.twinkle_time_s = 0.71f;
+        EXPECT_EQ(a.rgba, r.render(s).rgba) << ch.name;
+    }
+    double lo = 1e9, hi = 0.0, sn = 0.0, sf = 0.0, snn = 0.0, snf = 0.0, sff = 0.0;
+    for (size_t k = 0; k < clocks.size(); ++k) {
+        EXPECT_NEAR(factor[0][k], factor[1][k], 0.01 * factor[0][k]) << "clock " << clocks[k];
+        lo = std::min(lo, factor[0][k]);
+        hi = std::max(hi, factor[0][k]);
+        const double n = sh::twinkle_noise(0u, clocks[k]), f = std::log(factor[0][k]);
+        sn += n, sf += f, snn += n * n, snf += n * f, sff += f * f;
+    }
+    const double m = static_cast<double>(clocks.size());
+    const double corr = (snf - sn * sf / m) / std::sqrt((snn - sn * sn / m) * (sff - sf * sf / m));
+    const double slope = (snf - sn * sf / m) / (snn - sn * sn / m);
+    std::printf("twinkle on the edge: factors %.3f .. %.3f, log-factor vs noise: correlation %.5f, slope %.3f\n", lo,
+                hi, corr, slope);
+    EXPECT_GT(hi / lo, 1.2);
+    EXPECT_GT(corr, 0.999);
+    // The slope is sqrt(ln(1 + sigma^2)) for the zenith's sigma 2 m above the ground (about 0.27).
+    EXPECT_NEAR(slope, std::sqrt(std::log(1.0 + 0.27 * 0.27)), 0.03);
+}
+
 TEST(AtmosphereStars, StarWeightsAreRenderedOnlyWhenTheirInputsChange) {
     std::vector<glm::dvec3> stars;
     for (int i = 0; i < 4; ++i) stars.push_back(radec_to_vec(glm::radians(90.0 * i), glm::radians(70.0)));

@@ -84,6 +84,11 @@ TEST(ControlCommand, ParsesTheLanguage) {
     c = parse_control_line("time set 2024-04-08T18:17:00Z");
     EXPECT_EQ(c.verb, ControlVerb::TimeSet);
     EXPECT_DOUBLE_EQ(c.sim_time_s, utc_iso_to_j2000_seconds("2024-04-08T18:17:00Z"));
+    c = parse_control_line("set twinkle Forced");
+    EXPECT_EQ(c.setting, "twinkle");
+    EXPECT_EQ(c.value, "forced");
+    EXPECT_NE(parse_error("set twinkle sparkle").find("not one of on, off, forced, show"), std::string::npos)
+        << parse_error("set twinkle sparkle");
     EXPECT_EQ(parse_control_line("play").show_file, "");
     EXPECT_EQ(parse_control_line("play shows/x.json").show_file, "shows/x.json");
     EXPECT_EQ(parse_control_line("pause").verb, ControlVerb::Pause);
@@ -290,6 +295,10 @@ TEST_F(DirectorFixture, PlayStopSettingsAndQuit) {
     director->frame(1, no_device);
     apply("set shadow_mode illustrative", 2);
     EXPECT_EQ(shadow_mode_of(director->frame(2, no_device).snapshot.settings.flags), ShadowMode::Illustrative);
+    apply("set twinkle forced", 2);
+    EXPECT_EQ(twinkle_mode_of(director->frame(2, no_device).snapshot.settings.flags), TwinkleMode::Forced);
+    apply("set twinkle show", 2);
+    EXPECT_EQ(twinkle_mode_of(director->frame(2, no_device).snapshot.settings.flags), scene.stars.twinkle);
     apply("set exposure 3", 3);
     DirectedFrame d = director->frame(3, no_device);
     finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, 3, director->frame_interval_s(), nullptr, nullptr);

@@ -171,8 +171,11 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     const ShowScript show = easing_show(scene, dir, "linear", "linear", R"([
         {"at_s": 2, "shadow_mode": "illustrative"},
         {"at_s": 4, "exposure": 2.5, "star_magnitude_limit": 4.0},
-        {"at_s": 6, "exposure": "auto", "shadow_mode": "off"}])");
+        {"at_s": 6, "exposure": "auto", "shadow_mode": "off"},
+        {"at_s": 8, "twinkle": "forced"}])");
     EXPECT_EQ(shadow_mode_of(show.evaluate(1.99, scene).settings.flags), scene.shadows.mode);
+    EXPECT_EQ(twinkle_mode_of(show.evaluate(7.9, scene).settings.flags), scene.stars.twinkle);  // the scene's
+    EXPECT_EQ(twinkle_mode_of(show.evaluate(8.0, scene).settings.flags), TwinkleMode::Forced);
     EXPECT_EQ(shadow_mode_of(show.evaluate(2.0, scene).settings.flags), ShadowMode::Illustrative);
     EXPECT_FALSE(show.settings_at(3.9).exposure);
     ASSERT_TRUE(show.settings_at(4.0).exposure);
@@ -182,6 +185,7 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     EXPECT_FLOAT_EQ(*show.settings_at(6.0).star_magnitude_limit, 4.0f);  // kept
     EXPECT_EQ(shadow_mode_of(show.evaluate(7.0, scene).settings.flags), ShadowMode::Off);
     EXPECT_DOUBLE_EQ(show.duration_s(), 10.0);
+    EXPECT_EQ(*show.settings_at(9.0).twinkle, TwinkleMode::Forced);
 
     // The master turns them into the snapshot every channel receives.
     ClusterConfig cfg = load_cluster_config(test::source_path("configs/dome-4ch.json"));
@@ -193,6 +197,9 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     const Snapshot f13 = make_frame_snapshot(cfg, scene, show, 13);  // 6.5 s
     EXPECT_FLOAT_EQ(f13.settings.exposure, static_cast<float>(cfg.output.exposure));
     EXPECT_EQ(shadow_mode_of(f13.settings.flags), ShadowMode::Off);
+    // The twinkle clock is show time (frame x interval).
+    EXPECT_FLOAT_EQ(f13.settings.twinkle_time_s, 6.5f);
+    EXPECT_EQ(twinkle_mode_of(make_frame_snapshot(cfg, scene, show, 17).settings.flags), TwinkleMode::Forced);
 }
 
 TEST(ShowScript, BadEasingsAndEventsNameTheField) {

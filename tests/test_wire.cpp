@@ -52,6 +52,7 @@ Snapshot sample_snapshot(size_t bodies) {
     s.settings.glare_phase = 12.25f;
     s.settings.tone_white = 3.75f;
     s.settings.adapted_cd_m2 = 1234.5f;
+    s.settings.twinkle_time_s = 17.125f;
     GlareSource sun;
     sun.body = 0;
     sun.direction = glm::normalize(glm::vec3(0.3f, -0.4f, 0.8f));
@@ -119,7 +120,7 @@ TEST(Snapshot, MalformedPayloadsAreRefused) {
     EXPECT_THROW(decode_snapshot(qb.data(), qb.size()), WireError);
     // A body count that the payload cannot hold.
     auto huge = good;
-    const size_t count_at = 8 + 8 + 24 + 32 + 24;
+    const size_t count_at = 8 + 8 + 24 + 32 + 28;
     huge[count_at] = 0xFF;
     huge[count_at + 1] = 0xFF;
     EXPECT_THROW(decode_snapshot(huge.data(), huge.size()), WireError);

@@ -217,6 +217,7 @@ StarFieldConfig read_stars(const JsonReader& st, const std::string& dir) {
     c.magnitude_limit = st.declared_number("magnitude_limit");
     c.psf_sigma_arcmin = st.declared_number("psf_sigma_arcmin");
     c.zero_mag_flux = st.declared_number("zero_mag_flux");
+    c.twinkle = twinkle_mode_from_name(st.declared_choice("twinkle"));
     st.reject_unknown_keys();
     return c;
 }

@@ -11,6 +11,7 @@
 
 #include "atmosphere/atmosphere_parameters.hpp"
 #include "shading/shared_types.hpp"
+#include "wire/snapshot.hpp"
 
 namespace cupola {
 
@@ -91,8 +92,9 @@ struct ShadowConfig {
 struct StarFieldConfig {
     std::string catalog;  // resolved path of the compact star catalogue (CSV)
     double magnitude_limit = 6.5;
-    double psf_sigma_arcmin = 2.0;  // angular size of a star, cluster-wide
-    double zero_mag_flux = 2.0e-3;  // integrated flux of a V=0 star in scene units x steradian
+    double psf_sigma_arcmin = 2.0;           // angular size of a star, cluster-wide
+    double zero_mag_flux = 2.0e-3;           // integrated flux of a V=0 star in scene units x steradian
+    TwinkleMode twinkle = TwinkleMode::Off;  // until a show or the presenter changes it
 };
 
 // How a channel decides how much of a glare source is visible: from the whole cluster's

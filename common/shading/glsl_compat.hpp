@@ -24,7 +24,8 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
-using real = float;  // the scalar of the files written for both precisions (see above)
+using real = float;         // the scalar of the files written for both precisions (see above)
+using uint = unsigned int;  // 32 bits, wrapping like GLSL's
 
 // Vector built-ins (glm) and the std scalar overloads glm re-exports.
 using glm::abs;

@@ -68,7 +68,7 @@ glm::dquat get_dquat(ByteReader& r, const char* field) {
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     std::vector<uint8_t> out;
-    out.reserve(108 + s.bodies.size() * 58 + s.glare.size() * 59);
+    out.reserve(112 + s.bodies.size() * 58 + s.glare.size() * 59);
     ByteWriter w(out);
     w.u64(s.frame);
     w.f64(s.sim_time_s);
@@ -80,6 +80,7 @@ std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     w.f32(s.settings.glare_phase);
     w.f32(s.settings.tone_white);
     w.f32(s.settings.adapted_cd_m2);
+    w.f32(s.settings.twinkle_time_s);
     w.u32(static_cast<uint32_t>(s.bodies.size()));
     for (const auto& b : s.bodies) {
         w.u16(b.id);
@@ -120,6 +121,7 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
     if (s.settings.tone_white < 0.0f) throw WireError("field 'settings.tone_white' must not be negative");
     s.settings.adapted_cd_m2 = finite_f(r, "settings.adapted_cd_m2");
     if (s.settings.adapted_cd_m2 < 0.0f) throw WireError("field 'settings.adapted_cd_m2' must not be negative");
+    s.settings.twinkle_time_s = finite_f(r, "settings.twinkle_time_s");
     uint32_t nb = r.u32("body_count");
     if (nb > kMaxBodies) throw WireError("body_count " + std::to_string(nb) + " exceeds " + std::to_string(kMaxBodies));
     s.bodies.resize(nb);
@@ -172,6 +174,20 @@ AlignmentPattern alignment_pattern_from_name(const std::string& name) {
     for (size_t i = 0; i < n.size(); ++i)
         if (n[i] == name) return static_cast<AlignmentPattern>(i);
     throw std::invalid_argument("unknown alignment pattern \"" + name + "\" (grid, white, black or off)");
+}
+
+const std::vector<std::string>& twinkle_mode_names() {
+    static const std::vector<std::string> names{"off", "on", "forced"};
+    return names;
+}
+
+const char* twinkle_mode_name(TwinkleMode m) { return twinkle_mode_names().at(static_cast<size_t>(m)).c_str(); }
+
+TwinkleMode twinkle_mode_from_name(const std::string& name) {
+    const auto& n = twinkle_mode_names();
+    for (size_t i = 0; i < n.size(); ++i)
+        if (n[i] == name) return static_cast<TwinkleMode>(i);
+    throw std::invalid_argument("unknown twinkle mode \"" + name + "\" (on, off or forced)");
 }
 
 std::string snapshot_hash(const std::vector<uint8_t>& encoded) {

@@ -37,6 +37,9 @@ struct RenderSettings {
     // Both decided once per frame by the master (common/exposure/eye_adaptation.hpp).
     float tone_white = 0.0f;
     float adapted_cd_m2 = 0.0f;
+    // The stars' twinkle clock, seconds of show time (wraps at 4096 s): one value for the whole
+    // cluster, so every channel twinkles alike (shaders/shared/star_twinkle.glsl).
+    float twinkle_time_s = 0.0f;
     bool operator==(const RenderSettings&) const = default;
 };
 
@@ -91,6 +94,27 @@ const std::vector<std::string>& alignment_pattern_names();
 const char* alignment_pattern_name(AlignmentPattern p);
 // Throws std::invalid_argument naming the word and the choices.
 AlignmentPattern alignment_pattern_from_name(const std::string& name);
+
+// RenderSettings::flags bits 5..6: the stars' twinkling (shaders/shared/star_twinkle.glsl).
+enum class TwinkleMode : uint8_t {
+    Off = 0,     // steady stars
+    On = 1,      // stars twinkle as the air above a camera inside an atmosphere makes them
+    Forced = 2,  // twinkle also without air (a planetarium's choice), as at the zenith
+};
+constexpr uint32_t kTwinkleShift = 5;
+constexpr uint32_t kTwinkleMask = 0x3u << kTwinkleShift;
+inline TwinkleMode twinkle_mode_of(uint32_t flags) {
+    const uint32_t v = (flags & kTwinkleMask) >> kTwinkleShift;
+    return v > 2 ? TwinkleMode::Off : static_cast<TwinkleMode>(v);
+}
+inline uint32_t with_twinkle_mode(uint32_t flags, TwinkleMode m) {
+    return (flags & ~kTwinkleMask) | (static_cast<uint32_t>(m) << kTwinkleShift);
+}
+// "off", "on", "forced" (in TwinkleMode's order).
+const std::vector<std::string>& twinkle_mode_names();
+const char* twinkle_mode_name(TwinkleMode m);
+// Throws std::invalid_argument naming the word and the choices.
+TwinkleMode twinkle_mode_from_name(const std::string& name);
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s);
 // Throws WireError naming the field when the payload is short, long or holds a non-finite value.

@@ -40,7 +40,8 @@ const std::string& control_help() {
     static const std::string text =
         "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
-        "set star_limit <mag>|show | pattern grid|white|black|off|show | status | quit | help";
+        "set star_limit <mag>|show | set twinkle on|off|forced|show | pattern grid|white|black|off|show | status | "
+        "quit | help";
     return text;
 }
 
@@ -104,7 +105,7 @@ void parse_time(const Words& w, ControlCommand& c) {
 }
 
 void parse_set(const Words& w, ControlCommand& c) {
-    expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit <value>");
+    expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit|twinkle <value>");
     c.verb = ControlVerb::Set;
     c.setting = lower_case(w[1]);
     c.value = lower_case(w[2]);
@@ -127,8 +128,12 @@ void parse_set(const Words& w, ControlCommand& c) {
             if (x < -30.0 || x > 30.0) throw ControlError("set star_limit: must be -30..30, not " + w[2]);
             c.number = x;
         }
+    } else if (c.setting == "twinkle") {
+        const auto& n = twinkle_mode_names();
+        if (c.value != "show" && std::find(n.begin(), n.end(), c.value) == n.end())
+            throw ControlError("set twinkle: \"" + w[2] + "\" is not one of on, off, forced, show");
     } else {
-        throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure or star_limit");
+        throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure, star_limit or twinkle");
     }
 }
 

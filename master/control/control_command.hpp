@@ -12,6 +12,7 @@
 //   set shadow_mode <mode>         exact|fast|lut|illustrative|off, or "show" (the show's again)
 //   set exposure <x>|auto|show     fixed exposure, the cluster's (auto) exposure, or the show's
 //   set star_limit <mag>|show      faintest star drawn
+//   set twinkle on|off|forced|show the stars' twinkling, or the show's (the scene's) again
 //   pattern grid|white|black|off|show  alignment pattern on every channel instead of the scene
 //                                  (docs/ALIGNMENT.md); "show": the show's pattern again
 //   status                         one JSON line: frame, mode, time, rate, camera, show
@@ -40,7 +41,7 @@ struct ControlCommand {
     double sim_time_s = 0.0;        // time set: seconds since J2000 TT
     std::string utc;                // time set: as typed
     std::string show_file;          // play: as typed ("" = resume)
-    std::string setting;            // set: shadow_mode | exposure | star_limit
+    std::string setting;            // set: shadow_mode | exposure | star_limit | twinkle
     std::string value;              // set: the value as typed (lower case)
     std::optional<double> number;   // set exposure / star_limit: the value when it is a number
     std::string pattern;            // pattern: off | grid | white | black | show

@@ -8,6 +8,7 @@
 #include "passes/point_sprite_view.hpp"
 #include "passes/sky_view_gpu.hpp"
 #include "passes/sphere_billboard.hpp"
+#include "shading/shared_shading.hpp"
 
 namespace cupola {
 
@@ -43,11 +44,28 @@ int StarPass::prepare_at(const FrameContext& frame, bool after_sky) {
     exposure_ = frame.snap->settings.exposure;
     occluder_ = largest_occluder(frame);
     sky_ = sky_source_ ? sky_source_->star_sky(frame) : StarSky{};
+    twinkle_ = twinkle_for(*frame.snap, sky_);
     magnitude_limit_ =
         std::min({config_.magnitude_limit, static_cast<double>(frame.snap->settings.star_magnitude_limit),
                   visible_magnitude(frame.snap->settings.exposure)});
     const bool any = !magnitudes_.empty() && magnitudes_.front() <= magnitude_limit_;
     return any ? 1 : 0;
+}
+
+StarTwinkle StarPass::twinkle_for(const Snapshot& snap, const StarSky& sky) {
+    StarTwinkle t;
+    t.time_s = snap.settings.twinkle_time_s;
+    const TwinkleMode mode = twinkle_mode_of(snap.settings.flags);
+    if (mode == TwinkleMode::Off) return t;
+    const float d_m = sky.table_in.x;
+    const bool in_air = sky.table && d_m < sky.params.top_radius_m;
+    if (in_air) {
+        t.sigma_zenith = shading::twinkle_sigma_zenith(d_m - sky.params.bottom_radius_m);
+        t.zenith_world = -sky.center_dir_world;
+    } else if (mode == TwinkleMode::Forced) {
+        t.sigma_zenith = shading::twinkle_sigma_zenith(0.0f);
+    }
+    return t;
 }
 
 StarOccluder StarPass::largest_occluder(const FrameContext& frame) {
@@ -91,6 +109,9 @@ void StarPass::draw(const ChannelView& view, double magnitude_limit, double expo
     program_.set("u_px_per_tangent", glm::vec2(sprites.px_per_tangent_x, sprites.px_per_tangent_y));
     program_.set("u_sigma_rad", static_cast<float>(sigma));
     program_.set("u_exposure", static_cast<float>(exposure));
+    program_.set("u_twinkle_sigma_zenith", twinkle_.sigma_zenith);
+    program_.set("u_twinkle_zenith", twinkle_.zenith_world);
+    program_.set("u_twinkle_time_s", twinkle_.time_s);
     program_.set("u_min_display", static_cast<float>(kMinDisplay));
     program_.set("u_fixed_reach_sigma", static_cast<float>(kFixedReachSigma));
     program_.set("u_occluder_dir", occluder.center_dir);

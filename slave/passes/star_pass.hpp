@@ -22,6 +22,14 @@ struct StarOccluder {
     float radius_rad = 0.0f;
 };
 
+// The stars' twinkling in one frame (shaders/shared/star_twinkle.glsl), the same on every
+// channel: from the snapshot's mode and clock and the air the camera stands in.
+struct StarTwinkle {
+    float sigma_zenith = 0.0f;     // 0: no twinkling
+    glm::vec3 zenith_world{0.0f};  // unit; zero: every star at airmass 1
+    float time_s = 0.0f;           // the snapshot's twinkle clock
+};
+
 class StarPass : public BeyondTheAirPass {
 public:
     // stars: any order (sorted here by magnitude so a limit is a prefix).
@@ -39,6 +47,11 @@ public:
               const StarSky& sky = {}, bool after_sky = false);
     // The largest body on screen of a frame, not a star and not around the camera.
     static StarOccluder largest_occluder(const FrameContext& frame);
+    // The twinkling of a frame: mode on twinkles by the airmass when the camera is inside the
+    // air of `sky`; forced also does so, and without air twinkles every star as at the zenith.
+    static StarTwinkle twinkle_for(const Snapshot& snap, const StarSky& sky);
+    // What draw() twinkles with (prepare_at sets it from the frame).
+    void set_twinkle(const StarTwinkle& t) { twinkle_ = t; }
     static constexpr double kFixedReachSigma = 4.0;
 
     // In the pass list: additive, colour only (the G-buffer stays "nothing drawn"); the stars
@@ -72,6 +85,7 @@ private:
     const StarSkySource* sky_source_ = nullptr;
     StarSky sky_;
     bool after_sky_ = false;
+    StarTwinkle twinkle_;
 };
 
 }  // namespace cupola
