@@ -67,13 +67,12 @@ void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const C
     snap.settings.adapted_cd_m2 = static_cast<float>(d.adapted_cd_m2);
     snap.settings.star_magnitude_limit =
         settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
-    // The twinkle clock runs on show time from the frame index, like the glare phase, and wraps
-    // well before float loses the milliseconds the twinkle's fastest term needs.
-    snap.settings.twinkle_time_s = static_cast<float>(std::fmod(static_cast<double>(frame) * frame_interval_s, 4096.0));
+    // The twinkle clock and the glare phase run on show time from the frame index, so they go on
+    // in every mode; both wrap well before float loses the fractions that animate them.
+    const double show_time_s = static_cast<double>(frame) * frame_interval_s;
+    snap.settings.twinkle_time_s = static_cast<float>(std::fmod(show_time_s, 4096.0));
     if (glare && scene.glare.enabled) {
-        // The phase wraps well before float loses the fractions that animate the rays.
-        const double t = static_cast<double>(frame) * frame_interval_s;
-        snap.settings.glare_phase = static_cast<float>(std::fmod(t * scene.glare.animation_rate, 4096.0));
+        snap.settings.glare_phase = static_cast<float>(std::fmod(show_time_s * scene.glare.animation_rate, 4096.0));
         snap.glare = glare->select(snap);
     }
 }

@@ -12,8 +12,6 @@
 
 namespace cupola {
 
-namespace {}  // namespace
-
 // The slaves light the night sky with the drawn light of the brightest body (slave/passes/
 // moonlight.hpp); for the bodies with a measured phase curve (the Moon, the planets) that light is
 // the curve's (a ringed Saturn's with its rings), which is what the exposure takes here, in units
@@ -48,10 +46,16 @@ AutoExposure::AutoExposure(const ClusterConfig& cluster, const SceneConfig& scen
 
 AutoExposure::~AutoExposure() = default;
 
-std::vector<AutoExposure::MeterCell> AutoExposure::grid_cells(int grid) const {
+std::vector<ChannelFrustum> AutoExposure::channel_frusta() const {
+    std::vector<ChannelFrustum> frusta;
+    for (const auto& ch : cluster_->channels) frusta.push_back(ch.frustum());
+    return frusta;
+}
+
+std::vector<AutoExposure::MeterCell> AutoExposure::grid_cells(const std::vector<ChannelFrustum>& frusta, int grid) {
     std::vector<MeterCell> cells;
-    for (size_t c = 0; c < cluster_->channels.size(); ++c) {
-        const ChannelFrustum f = cluster_->channels[c].frustum();
+    for (size_t c = 0; c < frusta.size(); ++c) {
+        const ChannelFrustum& f = frusta[c];
         const double dx = (f.tan_left() + f.tan_right()) / grid, dy = (f.tan_down() + f.tan_up()) / grid;
         for (int j = 0; j < grid; ++j)
             for (int i = 0; i < grid; ++i)
@@ -62,9 +66,8 @@ std::vector<AutoExposure::MeterCell> AutoExposure::grid_cells(int grid) const {
 }
 
 std::vector<AutoExposure::MeterRay> AutoExposure::meter_rays(const Snapshot& snap,
+                                                             const std::vector<ChannelFrustum>& frusta,
                                                              const std::vector<MeterCell>& cells) const {
-    std::vector<ChannelFrustum> frusta;
-    for (const auto& ch : cluster_->channels) frusta.push_back(ch.frustum());
     const glm::dmat3 world_from_dome =
         glm::mat3_cast(snap.camera_orientation) * dome_tilt_rotation(cluster_->dome.tilt_deg);
     std::vector<MeterRay> rays;
@@ -141,8 +144,9 @@ std::vector<double> AutoExposure::luminances(const Snapshot& snap, const std::ve
 // from orbit falls between the rays of any regular grid (benchmarks/master_exposure).
 SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
     if (!find_star(snap, *scene_) || !atmospheres_ || atmospheres_->empty()) return {};
-    const std::vector<MeterCell> cells = grid_cells(grid);
-    const std::vector<MeterRay> rays = meter_rays(snap, cells);
+    const std::vector<ChannelFrustum> frusta = channel_frusta();
+    const std::vector<MeterCell> cells = grid_cells(frusta, grid);
+    const std::vector<MeterRay> rays = meter_rays(snap, frusta, cells);
     const std::vector<double> l = luminances(snap, rays);
     std::vector<MeterSample> samples(rays.size());
     for (size_t k = 0; k < rays.size(); ++k) samples[k] = {l[k], rays[k].weight_sr};
@@ -157,7 +161,7 @@ SkyMetering AutoExposure::meter(const Snapshot& snap, int grid) const {
         split_cell(cells[k], fine);
     }
     if (fine.empty()) return coarse;
-    const std::vector<MeterRay> fine_rays = meter_rays(snap, fine);
+    const std::vector<MeterRay> fine_rays = meter_rays(snap, frusta, fine);
     const std::vector<double> fine_l = luminances(snap, fine_rays);
     std::vector<MeterSample> all;  // a refined cell's samples replace its own
     for (size_t k = 0; k < cells.size(); ++k)

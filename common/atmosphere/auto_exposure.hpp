@@ -32,7 +32,7 @@ public:
     AutoExposure(const ClusterConfig& cluster, const SceneConfig& scene, const SceneAtmospheres* atmospheres = nullptr);
     ~AutoExposure();
 
-    // Rays per channel side of the master's metering: 8 x 8 costs 2.9 ms of CPU a frame on a
+    // Rays per channel side of the master's metering: 8 x 8 costs 2.3 ms of CPU a frame on a
     // 4-channel dome at greatest eclipse, and its log-average stays within the error that
     // benchmarks/master_exposure measures against a 64 x 64 grid (BENCHMARKS.md).
     static constexpr int kMeterGrid = 8;
@@ -61,13 +61,16 @@ private:
         glm::dvec3 dir_world;
         double weight_sr;
     };
+    // The cluster's channel frusta, in channel order (built once per metering).
+    std::vector<ChannelFrustum> channel_frusta() const;
     // The grid x grid cells of every channel's image plane, channel by channel, row by row.
-    std::vector<MeterCell> grid_cells(int grid) const;
+    static std::vector<MeterCell> grid_cells(const std::vector<ChannelFrustum>& frusta, int grid);
     static std::vector<size_t> edge_cells(const std::vector<bool>& lit, int grid);
     static void split_cell(const MeterCell& c, std::vector<MeterCell>& out);
     // A ray through each cell's centre, with the solid angle the cell stands for, divided among
     // the channels that overlap there.
-    std::vector<MeterRay> meter_rays(const Snapshot& snap, const std::vector<MeterCell>& cells) const;
+    std::vector<MeterRay> meter_rays(const Snapshot& snap, const std::vector<ChannelFrustum>& frusta,
+                                     const std::vector<MeterCell>& cells) const;
     // The luminance along each ray, through every atmosphere (needs the scene's star).
     std::vector<double> luminances(const Snapshot& snap, const std::vector<MeterRay>& rays) const;
     // The Moon's sky along v (unit, world) in cd/m^2 per unit solar irradiance of the physical spectrum.

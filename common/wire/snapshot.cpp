@@ -181,8 +181,6 @@ const std::vector<std::string>& twinkle_mode_names() {
     return names;
 }
 
-const char* twinkle_mode_name(TwinkleMode m) { return twinkle_mode_names().at(static_cast<size_t>(m)).c_str(); }
-
 TwinkleMode twinkle_mode_from_name(const std::string& name) {
     const auto& n = twinkle_mode_names();
     for (size_t i = 0; i < n.size(); ++i)

@@ -30,7 +30,7 @@ enum class AlignmentPattern : uint8_t {
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;        // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern)
+    uint32_t flags = 0;  // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern; 5..6: twinkle)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     // The display curve's white: the exposed luminance shown as white (shaders/shared/tone_curve.glsl);
     // 0: no curve (a fixed exposure). And the eye's adapted luminance, cd/m^2 (0: not metered).
@@ -112,7 +112,6 @@ inline uint32_t with_twinkle_mode(uint32_t flags, TwinkleMode m) {
 }
 // "off", "on", "forced" (in TwinkleMode's order).
 const std::vector<std::string>& twinkle_mode_names();
-const char* twinkle_mode_name(TwinkleMode m);
 // Throws std::invalid_argument naming the word and the choices.
 TwinkleMode twinkle_mode_from_name(const std::string& name);
 
