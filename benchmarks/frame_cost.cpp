@@ -22,7 +22,7 @@
 //    "trivial_ms", "ratio", "ratio_untimed", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
-//    "surface_separate", "stars_ignore_sky", "sky_last"}
+//    "surface_separate", "stars_ignore_sky", "sky_last", "overlays"}
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end), and
 // ratio_untimed that frame over the trivial pass: the waits after every pass cost llvmpipe a
@@ -37,7 +37,9 @@
 // angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
-//                        [--stars-ignore-sky] [--sky-last]
+//                        [--stars-ignore-sky] [--sky-last] [--overlays all|NAME,...]
+// With --overlays the scene's overlays named (or all) are shown (the pass "overlays"; their cost
+// is the frame's ratio with them minus the ratio without).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -224,6 +226,7 @@ struct Options {
     int size = 1024, frames = 10, warm_up = 2, device = -1;
     bool read_back = false, halo_separate = false, surface_separate = false, stars_ignore_sky = false;
     bool sky_last = false;
+    std::vector<std::string> overlays;  // shown: names (common/overlay/overlay_kind.hpp) or "all"
     double sun_step_deg = 0.0;
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
@@ -358,6 +361,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["surface_separate"] = o.surface_separate;
     j["stars_ignore_sky"] = o.stars_ignore_sky;
     j["sky_last"] = o.sky_last;
+    j["overlays"] = o.overlays;
     return j;
 }
 
@@ -402,13 +406,23 @@ int run(const Options& o) {
     r.set_sky_first(!o.sky_last);
     TrivialPass trivial(o.size);
     for (const ViewSpec* v : views) {
-        const Snapshot snap = view_snapshot(*v, scene, cluster, exposure, glare.get());
+        // With --overlays every overlay is fully in (the scene's overlays: the earth-moon scene's).
+        const auto with_overlays = [&](Snapshot s) {
+            for (const std::string& name : o.overlays) {
+                if (name == "all")
+                    s.settings.overlay_alpha.fill(1.0f);
+                else
+                    s.settings.overlay_alpha[static_cast<size_t>(overlay_from_name(name))] = 1.0f;
+            }
+            return s;
+        };
+        const Snapshot snap = with_overlays(view_snapshot(*v, scene, cluster, exposure, glare.get()));
         if (!o.images.empty()) write_view_image(o.images, *v, r, snap);
         const FrameSnapshots snaps = [&](int i) {
             if (o.sun_step_deg == 0.0) return snap;
             ViewSpec moved = *v;
             moved.sun_el_deg += i * o.sun_step_deg;
-            return view_snapshot(moved, scene, cluster, exposure, glare.get());
+            return with_overlays(view_snapshot(moved, scene, cluster, exposure, glare.get()));
         };
         const ViewTimes t = time_view(r, trivial, snaps, o);
         std::printf("%s\n", view_line(*v, t, o, model, renderer).dump().c_str());
@@ -433,6 +447,10 @@ int main(int argc, char** argv) {
                  "every star the exposure can show is drawn, the sky behind it not considered (for comparison)");
     app.add_flag("--sky-last", o.sky_last,
                  "the stars, the Sun and the bodies are drawn before the sky, never after it (for comparison)");
+    app.add_option("--overlays", o.overlays,
+                   "overlays shown (the pass 'overlays'): all, or names such as constellations,constellation_names,"
+                   "boundaries,grid_altaz,grid_equatorial,grid_ecliptic,horizon,meridian,cardinals,labels")
+        ->delimiter(',');
     app.add_option("--sun-step-deg", o.sun_step_deg,
                    "raise the Sun by this much every frame (0: a static view; the sky-view table is re-rendered "
                    "when the Sun's zenith angle crosses a step of its grid)");

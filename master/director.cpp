@@ -185,6 +185,9 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
     if (star_limit_override_) out.settings.star_magnitude_limit = star_limit_override_;
     if (pattern_override_) out.settings.pattern = pattern_override_;
     if (twinkle_override_) out.settings.twinkle = twinkle_override_;
+    if (sky_brightness_override_) out.settings.sky_brightness = sky_brightness_override_;
+    for (size_t k = 0; k < kOverlayCount; ++k)
+        if (overlay_override_[k]) out.settings.overlays[k] = overlay_override_[k];
     uint32_t& flags = out.snapshot.settings.flags;
     flags = with_shadow_mode(flags, out.settings.shadow_mode.value_or(scene_.shadows.mode));
     flags = with_alignment_pattern(flags, out.settings.pattern.value_or(AlignmentPattern::Off));
@@ -230,6 +233,14 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             return cmd.setting + " " + cmd.value + " from frame " + std::to_string(next);
         case ControlVerb::Pattern:
             return apply_pattern(cmd, next);
+        case ControlVerb::Overlay:
+            if (!cmd.overlay) {
+                overlay_override_ = {};
+                return "overlays as the show has them from frame " + std::to_string(next);
+            }
+            overlay_override_[*cmd.overlay] = cmd.overlay_shown;
+            return std::string(*cmd.overlay_shown ? "showing " : "hiding ") + overlay_names()[*cmd.overlay] +
+                   " from frame " + std::to_string(next);
         case ControlVerb::Status:
             return status(next).dump();
         case ControlVerb::Quit:
@@ -307,6 +318,11 @@ void Director::apply_setting(const ControlCommand& cmd) {
             twinkle_override_.reset();
         else
             twinkle_override_ = twinkle_mode_from_name(cmd.value);
+    } else if (cmd.setting == "sky_brightness") {
+        if (cmd.value == "show")
+            sky_brightness_override_.reset();
+        else
+            sky_brightness_override_ = cmd.number.value();
     } else {
         if (cmd.value == "show")
             star_limit_override_.reset();

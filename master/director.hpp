@@ -101,6 +101,9 @@ private:
     std::optional<ShadowMode> shadow_override_;
     std::optional<std::optional<float>> exposure_override_;  // inner none: the cluster's exposure
     std::optional<float> star_limit_override_;
+    std::optional<double> sky_brightness_override_;
+    std::array<std::optional<bool>, kOverlayCount>
+        overlay_override_;  // "show" / "hide" (none: the show's)  // "set sky_brightness" / "set bortle" (mag/arcsec^2)
     std::optional<TwinkleMode> twinkle_override_;       // "set twinkle": over the show's (none: the show's)
     std::optional<AlignmentPattern> pattern_override_;  // "pattern": over the show's (none: the show's)
     InputShaper shaper_;

@@ -20,6 +20,7 @@
 #include "net/wire_endpoint.hpp"
 #include "util/stats_writer.hpp"
 #include "util/monotonic_clock.hpp"
+#include "scene/night_sky.hpp"
 #include "wire/byte_io.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
@@ -33,7 +34,8 @@ MasterNode::MasterNode(ClusterConfig cluster, MasterOptions options)
     : cluster_(std::move(cluster)),
       scene_(load_scene_config(cluster_.scene_file)),
       show_(ShowScript::load(cluster_.show_file, scene_)),
-      options_(std::move(options)) {
+      options_(std::move(options)),
+      overlays_(scene_) {
     if (cluster_.output.auto_exposure.enabled || scene_.glare.enabled)
         atmospheres_ = std::make_unique<SceneAtmospheres>(scene_);
     auto_exposure_ = std::make_unique<AutoExposure>(cluster_, scene_, atmospheres_.get());
@@ -49,10 +51,29 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
     return snap;
 }
 
-void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
-                           const SceneConfig& scene, uint64_t frame, double frame_interval_s,
-                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye) {
-    snap.frame = frame;
+namespace {
+
+// What the show, the presenter and the scene set for the frame: the star limit, the night sky's
+// brightness and the overlays' opacities (without a fader, a frame on its own, each fully in or out).
+void apply_sky_settings(Snapshot& snap, const ShowSettings& settings, const SceneConfig& scene, double frame_interval_s,
+                        OverlayFader* overlays) {
+    snap.settings.star_magnitude_limit =
+        settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
+    const std::optional<double> sky_mag =
+        settings.sky_brightness ? settings.sky_brightness : scene.stars.sky_brightness_mag_arcsec2;
+    snap.settings.night_sky_cd_m2 = sky_mag ? static_cast<float>(sky_brightness_cd_m2(*sky_mag)) : 0.0f;
+    const std::array<bool, kOverlayCount> shown = overlay_targets(settings, scene);
+    if (overlays) {
+        snap.settings.overlay_alpha = overlays->step(shown, frame_interval_s);
+    } else {
+        for (size_t k = 0; k < kOverlayCount; ++k) snap.settings.overlay_alpha[k] = shown[k] ? 1.0f : 0.0f;
+    }
+}
+
+// The exposure, the display white, the eye's adaptation and night vision, metered from the
+// snapshot as it stands (the night sky's glow included).
+void apply_exposure(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster, double frame_interval_s,
+                    const AutoExposure* auto_exposure, EyeAdaptation* eye) {
     ExposureDecision d;
     d.exposure = cluster.output.exposure;
     // The eye adapts whether or not the show fixes the exposure, so that a return to the
@@ -65,8 +86,20 @@ void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const C
     snap.settings.exposure = static_cast<float>(d.exposure);
     snap.settings.tone_white = static_cast<float>(d.tone_white);
     snap.settings.adapted_cd_m2 = static_cast<float>(d.adapted_cd_m2);
-    snap.settings.star_magnitude_limit =
-        settings.star_magnitude_limit.value_or(static_cast<float>(scene.stars.magnitude_limit));
+    // Night vision belongs to the eye's adaptation: only under the automatic exposure.
+    const bool night = d.tone_white > 0.0 && d.adapted_cd_m2 > 0.0 && cluster.output.auto_exposure.night_vision;
+    snap.settings.flags = night ? (snap.settings.flags | kNightVisionBit) : (snap.settings.flags & ~kNightVisionBit);
+}
+
+}  // namespace
+
+void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
+                           const SceneConfig& scene, uint64_t frame, double frame_interval_s,
+                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye,
+                           OverlayFader* overlays) {
+    snap.frame = frame;
+    apply_sky_settings(snap, settings, scene, frame_interval_s, overlays);
+    apply_exposure(snap, settings, cluster, frame_interval_s, auto_exposure, eye);
     // The twinkle clock and the glare phase run on show time from the frame index, so they go on
     // in every mode; both wrap well before float loses the fractions that animate them.
     const double show_time_s = static_cast<double>(frame) * frame_interval_s;
@@ -345,7 +378,7 @@ bool MasterNode::Loop::frame(uint64_t f) {
     const DirectedFrame directed = director.frame(f, input_hub.combined());
     Snapshot snap = directed.snapshot;
     finish_frame_snapshot(snap, directed.settings, cluster, node.scene_, f, director.frame_interval_s(),
-                          node.auto_exposure_.get(), node.glare_sources_.get(), &node.eye_);
+                          node.auto_exposure_.get(), node.glare_sources_.get(), &node.eye_, &node.overlays_);
     if (f > start_frame) glare_sharing.apply(snap, previous_reports, f - 1);
     std::vector<uint8_t> payload = encode_snapshot(snap);
     const std::string hash = snapshot_hash(payload);

@@ -14,6 +14,7 @@
 #include "config/scene_config.hpp"
 #include "glare/glare_sharing.hpp"
 #include "glare/glare_sources.hpp"
+#include "overlay_fader.hpp"
 #include "show_script.hpp"
 
 namespace cupola {
@@ -45,7 +46,8 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
 // frame (the master's); none: the eye adapted to this frame (make_frame_snapshot).
 void finish_frame_snapshot(Snapshot& snap, const ShowSettings& settings, const ClusterConfig& cluster,
                            const SceneConfig& scene, uint64_t frame, double frame_interval_s,
-                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye = nullptr);
+                           const AutoExposure* auto_exposure, const GlareSources* glare, EyeAdaptation* eye = nullptr,
+                           OverlayFader* overlays = nullptr);
 
 class MasterNode {
 public:
@@ -66,6 +68,7 @@ private:
     std::unique_ptr<AutoExposure> auto_exposure_;
     std::unique_ptr<GlareSources> glare_sources_;  // when the scene has glare
     EyeAdaptation eye_;                            // carried from frame to frame (auto exposure)
+    OverlayFader overlays_;                        // the overlays' fades, frame to frame
     std::atomic<bool> stop_requested_{false};
 };
 

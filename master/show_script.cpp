@@ -11,6 +11,7 @@
 #include "config/json_reader.hpp"
 #include "eclipse/shadow_casters.hpp"
 #include "scene/ephemeris.hpp"
+#include "scene/night_sky.hpp"
 #include "scene/sim_time.hpp"
 
 namespace cupola {
@@ -99,6 +100,23 @@ ShowKeyframe read_keyframe(const JsonReader& k, const SceneConfig& scene, const 
     return f;
 }
 
+// An event's "show" and "hide": lists of overlay names (common/overlay/overlay_kind.hpp). Returns
+// whether it has any.
+bool read_overlay_switches(const JsonReader& e, ShowEvent& ev) {
+    bool any = false;
+    for (const char* key : {"show", "hide"}) {
+        for (const std::string& name : e.strings(key, {})) {
+            try {
+                ev.overlays[static_cast<size_t>(overlay_from_name(name))] = std::string(key) == "show";
+            } catch (const std::invalid_argument& x) {
+                e.fail(key, x.what());
+            }
+            any = true;
+        }
+    }
+    return any;
+}
+
 ShowEvent read_event(const JsonReader& e) {
     ShowEvent ev;
     ev.at_s = e.declared_number("at_s");
@@ -118,10 +136,17 @@ ShowEvent read_event(const JsonReader& e) {
         ev.star_magnitude_limit = static_cast<float>(e.declared_number("star_magnitude_limit", 0.0));
     if (e.has("pattern")) ev.pattern = alignment_pattern_from_name(e.one_of("pattern", e.declared_choices("pattern")));
     if (e.has("twinkle")) ev.twinkle = twinkle_mode_from_name(e.one_of("twinkle", e.declared_choices("twinkle")));
+    if (e.has("sky_brightness") && e.has("bortle")) e.fail("bortle", "give sky_brightness or bortle, not both");
+    if (e.has("sky_brightness")) ev.sky_brightness = e.declared_number("sky_brightness", 0.0);
+    if (e.has("bortle"))
+        ev.sky_brightness = bortle_zenith_mag_arcsec2(static_cast<int>(e.declared_integer("bortle", 0)));
+    const bool overlays = read_overlay_switches(e, ev);
     e.reject_unknown_keys();
-    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit && !ev.pattern && !ev.twinkle)
+    if (!ev.shadow_mode && !ev.exposure && !ev.exposure_auto && !ev.star_magnitude_limit && !ev.pattern &&
+        !ev.twinkle && !ev.sky_brightness && !overlays)
         e.fail("at_s",
-               "an event must set at least one of shadow_mode, exposure, star_magnitude_limit, pattern, twinkle");
+               "an event must set at least one of shadow_mode, exposure, star_magnitude_limit, pattern, twinkle, "
+               "sky_brightness, bortle, show, hide");
     return ev;
 }
 
@@ -248,6 +273,9 @@ ShowSettings ShowScript::settings_at(double show_time_s) const {
             if (ev.star_magnitude_limit) out.star_magnitude_limit = ev.star_magnitude_limit;
             if (ev.pattern) out.pattern = ev.pattern;
             if (ev.twinkle) out.twinkle = ev.twinkle;
+            if (ev.sky_brightness) out.sky_brightness = ev.sky_brightness;
+            for (size_t k = 0; k < kOverlayCount; ++k)
+                if (ev.overlays[k]) out.overlays[k] = ev.overlays[k];
         }
     };
     for (const auto& k : keys_) {

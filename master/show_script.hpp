@@ -7,6 +7,7 @@
 // at_s, time_utc and a camera (anchor body, offset_m or a ground observer, look_at or
 // look_direction), with easings to the next key; events[] switch shadow mode, exposure, star
 // magnitude limit and the alignment pattern (docs/ALIGNMENT.md) at a show time.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,17 +52,21 @@ struct ShowEvent {
     std::optional<float> exposure;  // fixed exposure from here on
     bool exposure_auto = false;     // back to the cluster's own exposure
     std::optional<float> star_magnitude_limit;
-    std::optional<AlignmentPattern> pattern;  // the alignment pattern from here on (Off: the scene)
-    std::optional<TwinkleMode> twinkle;       // the stars' twinkling from here on
+    std::optional<AlignmentPattern> pattern;                  // the alignment pattern from here on (Off: the scene)
+    std::optional<TwinkleMode> twinkle;                       // the stars' twinkling from here on
+    std::optional<double> sky_brightness;                     // the night sky's zenith brightness, V mag/arcsec^2
+    std::array<std::optional<bool>, kOverlayCount> overlays;  // "show" / "hide": fade in or out
 };
 
 // The render settings a show asks for at a show time (events and keyframes up to then).
 struct ShowSettings {
-    std::optional<ShadowMode> shadow_mode;      // none: the scene's default
-    std::optional<float> exposure;              // none: the cluster's (auto) exposure
-    std::optional<float> star_magnitude_limit;  // none: the scene's limit
-    std::optional<AlignmentPattern> pattern;    // none: no pattern (the scene)
-    std::optional<TwinkleMode> twinkle;         // none: the scene's stars.twinkle
+    std::optional<ShadowMode> shadow_mode;                    // none: the scene's default
+    std::optional<float> exposure;                            // none: the cluster's (auto) exposure
+    std::optional<float> star_magnitude_limit;                // none: the scene's limit
+    std::optional<AlignmentPattern> pattern;                  // none: no pattern (the scene)
+    std::optional<TwinkleMode> twinkle;                       // none: the scene's stars.twinkle
+    std::optional<double> sky_brightness;                     // V mag/arcsec^2; none: the scene's stars.sky_brightness
+    std::array<std::optional<bool>, kOverlayCount> overlays;  // shown or hidden; none: the scene's
 };
 
 class ShowScript {

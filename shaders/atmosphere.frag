@@ -17,6 +17,7 @@ uniform vec4 u_distances_m;  // (d, R, d - R, d + R) in metres, as the body pass
 uniform float u_d_m;         // camera -> planet centre, metres
 uniform vec3 u_sun;          // unit, channel frame: planet centre -> Sun
 uniform float u_solar_scale; // scene irradiance of the Sun / illuminance of the physical spectrum
+uniform vec3 u_night_sky;    // the night sky's own glow at the zenith, scene units (shared/night_sky.glsl)
 uniform AtmosphereParams u_atm;
 uniform AtmosphereAnalyticFit u_fit;
 uniform int u_analytic;
@@ -118,7 +119,8 @@ void shade() {
         seg = atm_view_ray_shadowed(u_atm, u_transmittance, u_trans_size, u_multiple_scattering, u_ms_size,
                                     u_use_ms != 0, st, t_geometry, u_samples, shadow, u_eclipse_lut);
     }
-    out_add = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint, 0.0);
+    vec3 glow = ground ? vec3(0.0) : u_night_sky * night_sky_gradient(dot(v, -u_center_dir));
+    out_add = vec4((base * seg.transmittance + to_scene_rgb(seg.inscatter_per_sr)) * tint + glow, 0.0);
     out_factor = surface ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(seg.transmittance * tint, 1.0);
 }
 

@@ -51,6 +51,7 @@ uniform vec3 u_moon;            // unit, channel frame: camera -> Moon
 uniform vec3 u_moon_perp;       // atm_sky_view_sun_perp(-u_center_dir, u_moon)
 uniform vec3 u_moon_scale;      // the Moon's irradiance over the Sun's, per channel, times u_solar_scale
 uniform float u_disc_weight;    // the planet's disc weight from point to disc (passes/planet_light): 0..1
+uniform vec3 u_night_sky;      // the night sky's own glow at the zenith, scene units (shared/night_sky.glsl)
 uniform int u_supersample;      // SKY_OUTSIDE and SKY_MAP: n x n rays a pixel (a small disc: PlanetLight::supersample)
 
 layout(location = 0, index = 0) out vec4 out_add;
@@ -111,7 +112,9 @@ vec3 moonlight(vec3 v, bool ground, vec3 reflectance) {
 void from_table(vec2 uv, float nu, bool ground, bool surface, vec4 geo, vec3 v) {
     vec3 inscatter = atm_sky_view_inscatter(u_atm, u_sky_phased, u_sky_mie, uv, nu);
     if (!ground) {
-        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale + moonlight(v, false, vec3(0.0)), 0.0);
+        out_add = vec4(max(inscatter, vec3(0.0)) * u_solar_scale + moonlight(v, false, vec3(0.0)) +
+                           u_night_sky * night_sky_gradient(dot(v, -u_center_dir)),
+                       0.0);
 #if SKY_FIRST
         out_factor = vec4(0.0, 0.0, 0.0, 1.0);  // nothing lies behind yet: no transmittance needed
 #else

@@ -16,6 +16,7 @@ uniform float u_sky_d_m;        // camera -> planet centre, metres
 uniform vec3 u_sky_center_dir;  // unit, world frame: camera -> planet centre
 uniform vec3 u_sky_sun;         // unit, world frame: planet centre -> Sun
 uniform float u_sky_to_cd_m2;   // the table's values to cd/m^2
+uniform float u_night_sky_cd_m2;  // the night sky's own glow at the zenith (shared/night_sky.glsl)
 uniform sampler2D u_moon_phased;  // the Moon's sky-view table (common/atmosphere/moonlit_sky.hpp), when
 uniform sampler2D u_moon_mie;     // u_moon_ratio > 0
 uniform sampler2D u_moon_third;
@@ -44,7 +45,10 @@ void main() {
                                                      u_sky_d_m, star.xyz, u_sky_center_dir, u_moon).w,
                                       0.0);
     int index = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
-    float weight = index < u_star_count ? star_sky_weight(star_sky_behind_of(light), u_sky_to_cd_m2, star.w) : 0.0;
+    float glow_cd_m2 = u_night_sky_cd_m2 * night_sky_gradient(dot(star.xyz, -u_sky_center_dir));
+    float weight = index < u_star_count
+                       ? star_sky_weight_over(star_sky_behind_of(light), u_sky_to_cd_m2, glow_cd_m2, star.w)
+                       : 0.0;
     if (weight > 0.0) atomicMax(u_draw.count, uint(index + 1));
     // The weight, and the weight times the air's transmittance in front of the star (what a star
     // drawn after the sky takes: the atmosphere's look-up no longer multiplies it).

@@ -13,6 +13,7 @@ uniform vec2 u_raster;        // raster width, height in pixels
 uniform vec2 u_content_size;  // content width, height in texels
 uniform float u_exposure;
 uniform float u_tone_white;   // the display curve's white (shared/tone_curve.glsl); 0: none
+uniform float u_night_adapted_cd_m2;  // the eye's adaptation for night vision; 0: none
 uniform float u_gamma;
 uniform int u_encode;         // PROJECTOR_ENCODE_*
 uniform int u_max_taps;       // footprint box filter: most taps per axis (1: one tap)
@@ -83,7 +84,8 @@ void main() {
     float alpha = textureLod(u_alpha, t, 0.0).r;
     float beta = textureLod(u_beta, t, 0.0).r;
     // Not shown: black content, still lifted to the projector's black level like every pixel.
-    vec3 content = w.shown ? tone_curve(filtered_content(w) * u_exposure, u_tone_white) : vec3(0.0);
+    vec3 exposed = night_vision(filtered_content(w) * u_exposure, u_exposure, u_night_adapted_cd_m2);
+    vec3 content = w.shown ? tone_curve(exposed, u_tone_white) : vec3(0.0);
     vec3 c = projector_blend(content, alpha, w.intensity, beta);
     out_linear = vec4(c, 1.0);
     out_encoded = vec4(projector_encode(c, u_gamma, u_encode), 1.0);

@@ -20,6 +20,7 @@
 #include "passes/milky_way_pass.hpp"
 #include "passes/moonlight.hpp"
 #include "passes/painter_pass.hpp"
+#include "passes/overlay_pass.hpp"
 #include "passes/pattern_pass.hpp"
 #include "passes/planet_point_pass.hpp"
 #include "passes/render_pass.hpp"
@@ -117,6 +118,8 @@ struct SceneRenderer::Impl {
         }
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
+        // The presenter's overlays, over everything: colour, blended.
+        if (scene.overlays.present) overlays = &add(std::make_unique<OverlayPass>(scene));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
         // above, which are then skipped (render()); the passes after it (the output) draw it.
         pattern = &add(std::make_unique<PatternPass>(cluster, ch));
@@ -155,6 +158,7 @@ struct SceneRenderer::Impl {
     glm::dvec3 air_point_flux(const FrameContext& f, const FrameBody& planet, const PlanetLightInputs& in) const;
     PlanetShine planetshine_on(const FrameContext& f, const BodyConfig& body, const BodyState& state) const;
     PatternPass* pattern = nullptr;  // the passes before it draw the scene
+    OverlayPass* overlays = nullptr;
     std::vector<GlareMeasurement> no_measurements;
     bool stars_see_the_sky = true;  // set_stars_see_the_sky(): a sky drawn first needs it
     // No pass of its own (insert_pass) draws colour before the atmosphere: a sky drawn first would
@@ -387,6 +391,8 @@ void SceneRenderer::set_sky_first(bool on) {
 }
 
 long SceneRenderer::star_weight_renders() const { return impl_->stars->sky_weight_renders(); }
+
+const OverlayPass* SceneRenderer::overlays() const { return impl_->overlays; }
 
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 

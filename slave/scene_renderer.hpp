@@ -39,6 +39,7 @@ struct FrameTimings {
 };
 
 class RenderPass;
+class OverlayPass;
 class GlTexture;
 
 class SceneRenderer {
@@ -89,6 +90,8 @@ public:
     void set_sky_first(bool on);
     // How often the star pass rendered its per-star sky weights (passes/star_sky_weights.hpp).
     long star_weight_renders() const;
+    // The overlay pass (null when the scene has no overlays).
+    const OverlayPass* overlays() const;
     // The last frame's timings while pass timing is on (empty before the first timed frame).
     const FrameTimings& last_frame_timings() const;
 

@@ -211,6 +211,7 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     meta.renderer = gl.context.info().renderer;
     meta.tone_white = snap.settings.tone_white;
     meta.adapted_cd_m2 = snap.settings.adapted_cd_m2;
+    meta.night_vision = night_vision_of(snap.settings.flags);
     // The warp pass and every sink's take, then settle: "ready N" goes out only once frame N's
     // files are on disk. The master counts a frame done when every channel reported it, and a
     // channel that restarts renders the master's current frame, not older ones (master/session/

@@ -6,6 +6,8 @@
 // behind it (shaders/shared/star_visibility.glsl): the threshold against Schaefer's relation on
 // the CPU, then every star's light in the renders against the CPU's judgement, by day, in twilight
 // and at night, and a fading star on the edge between two channels.
+// The night sky's own glow (airglow and light pollution, a Bortle class) lights the sky and
+// sets the limiting magnitude: the faintest star drawn against Schaefer's relation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +25,7 @@
 #include "image/frame_image.hpp"
 #include "passes/star_sky.hpp"
 #include "passes/star_sky_weights.hpp"
+#include "scene/night_sky.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"
 #include "support/headless_gl.hpp"
@@ -565,4 +568,114 @@ TEST(AtmosphereStars, InASolarEclipseTheMasterDoesNotJudgeStarsAgainstTheSunlitS
     EXPECT_EQ(star_glare(), 0.0);
     s.bodies[2].position_m = s.camera_position_m + 3.844e8 * to_sun;  // on the Sun: total
     EXPECT_GT(star_glare(), 0.0);
+}
+
+// ---- The night sky's own brightness (shaders/shared/night_sky.glsl, common/scene/night_sky) ----
+
+namespace {
+// Schaefer's (1990, equations 2 and 3) naked-eye limiting magnitude for a sky of B V
+// mag/arcsec^2, written here from the paper's constants: I = C1 (1 + sqrt(C2 B))^2 foot-candles
+// with B in nanolamberts (1 cd/m^2 = pi 10^5 nL), C1 = 10^-9.8 and C2 = 10^-1.9 below 10^3.17 nL
+// (rods), 10^-8.35 and 10^-5.9 above (cones); a V = 0 star gives 10^-6.628 foot-candles. With the
+// rods alone this is the form quoted for sky-quality meters, 7.93 - 5 log10(10^(4.316 - B/5) + 1).
+double schaefer_nelm(double b_mag_arcsec2) {
+    const double b_nl = 1.08e5 * std::pow(10.0, -0.4 * b_mag_arcsec2) * std::numbers::pi * 1e5;
+    const bool rods = b_nl < std::pow(10.0, 3.17);
+    const double c1 = std::pow(10.0, rods ? -9.8 : -8.35), c2 = std::pow(10.0, rods ? -1.9 : -5.9);
+    const double fc = c1 * std::pow(1.0 + std::sqrt(c2 * b_nl), 2.0);
+    return -2.5 * std::log10(fc / std::pow(10.0, -6.628));
+}
+
+// Krisciunas and Schaefer (1991), equation 2, with k = 0.2: the sky at zenith distance z over the zenith's.
+double ks_gradient(double z_rad) {
+    const double x = 1.0 / std::sqrt(1.0 - 0.96 * std::sin(z_rad) * std::sin(z_rad));
+    return x * std::pow(10.0, -0.4 * 0.2 * (x - 1.0));
+}
+}  // namespace
+
+TEST(NightSky, BortleClassesMagnitudesLuminancesAndTheGradient) {
+    EXPECT_DOUBLE_EQ(bortle_zenith_mag_arcsec2(1), 22.0);
+    EXPECT_DOUBLE_EQ(bortle_zenith_mag_arcsec2(4), 21.09);
+    EXPECT_DOUBLE_EQ(bortle_zenith_mag_arcsec2(8), 18.0);
+    for (int c = 2; c <= 9; ++c) EXPECT_LT(bortle_zenith_mag_arcsec2(c), bortle_zenith_mag_arcsec2(c - 1));
+    EXPECT_THROW(bortle_zenith_mag_arcsec2(0), std::invalid_argument);
+    EXPECT_THROW(bortle_zenith_mag_arcsec2(10), std::invalid_argument);
+    // 22 mag/arcsec^2 is the natural night sky, about 1.7e-4 cd/m^2.
+    EXPECT_NEAR(sky_brightness_cd_m2(22.0), 1.08e5 * std::pow(10.0, -8.8), 1e-3 * 1.7e-4);
+    EXPECT_NEAR(sky_brightness_cd_m2(18.0) / sky_brightness_cd_m2(22.0), std::pow(10.0, 1.6), 1e-3 * 39.8);
+    // The rods' branch is the sky-quality meters' form; a city sky is in the cones' branch.
+    EXPECT_NEAR(schaefer_nelm(22.0), 7.93 - 5.0 * std::log10(std::pow(10.0, 4.316 - 22.0 / 5.0) + 1.0), 0.01);
+    EXPECT_GT(schaefer_nelm(18.0), 7.93 - 5.0 * std::log10(std::pow(10.0, 4.316 - 18.0 / 5.0) + 1.0));
+    for (double z_deg : {0.0, 30.0, 60.0, 75.0, 85.0, 90.0}) {
+        const double z = glm::radians(z_deg);
+        EXPECT_NEAR(sh::night_sky_gradient(static_cast<float>(std::cos(z))), ks_gradient(z), 1e-4 * ks_gradient(z))
+            << z_deg;
+    }
+    EXPECT_GT(sh::night_sky_gradient(0.0f), 2.0f);  // the horizon glows more than twice the zenith
+    EXPECT_NEAR(sh::night_sky_at_height(1.0f, 8000.0f), std::exp(-1.0), 1e-6);
+}
+
+TEST(NightSky, TheGlowLightsTheSkyItsZenithLuminanceAndBrighterTowardTheHorizon) {
+    const SceneConfig scene = make_scene("glow", "sky-view", {radec_to_vec(0.0, glm::radians(-80.0))});
+    const ClusterConfig cluster = make_cluster({0.0, 45.0, 0.0}, {30.0, 30.0, 50.0, 40.0});
+    context();
+    SceneRenderer r(cluster, cluster.channels[0], scene);
+    Snapshot s = snapshot(2.0, sun_at_zenith_deg(130.0));
+    s.settings.exposure = 1.0f;
+    const Image dark = r.render(s);
+    s.settings.night_sky_cd_m2 = static_cast<float>(sky_brightness_cd_m2(18.0));
+    const Image city = r.render(s);
+    // The channel looks 45 degrees up, 90 tall: its top rows (row 0 at the top) near the zenith,
+    // its bottom near the horizon.
+    const ChannelFrustum f = cluster.channels[0].frustum();
+    const auto glow_at_row = [&](int y) {
+        return luminance(city.pixel(city.width / 2, y)) - luminance(dark.pixel(dark.width / 2, y));
+    };
+    const auto zenith_angle_at_row = [&](int y) {
+        const double t = f.tan_up() - (y + 0.5) * (f.tan_down() + f.tan_up()) / city.height;
+        return glm::radians(45.0) - std::atan(t);
+    };
+    const double b = s.settings.night_sky_cd_m2;
+    for (int y : {4, city.height / 2, city.height - 6}) {
+        const double z = zenith_angle_at_row(y);
+        std::printf("zenith distance %.1f deg: glow %.4g cd/m^2, model %.4g\n", glm::degrees(z), glow_at_row(y),
+                    b * ks_gradient(z));
+        EXPECT_NEAR(glow_at_row(y), b * ks_gradient(z), 0.03 * b * ks_gradient(z)) << "row " << y;
+    }
+    EXPECT_GT(glow_at_row(city.height - 6), 1.5 * glow_at_row(4));
+}
+
+TEST(NightSky, TheFaintestStarSeenFollowsSchaefersLimitUnderBortle148) {
+    // Fifty stars of V = 3.0 .. 7.9 within 6 degrees of the zenith; the channel looks up.
+    std::vector<glm::dvec3> stars;
+    std::vector<double> vmag;
+    for (int i = 0; i < 50; ++i) {
+        stars.push_back(radec_to_vec(glm::radians(137.5 * i), glm::radians(89.0 - 5.0 * std::sqrt(i / 50.0))));
+        vmag.push_back(3.0 + 0.1 * i);
+    }
+    const SceneConfig scene = make_scene("limiting_magnitude", "sky-view", stars, vmag);
+    const ClusterConfig cluster = make_cluster({0.0, 90.0, 0.0}, {30.0, 30.0, 30.0, 30.0});
+    const ChannelFrustum f = cluster.channels[0].frustum();
+    context();
+    SceneRenderer r(cluster, cluster.channels[0], scene);
+    for (int bortle : {1, 4, 8}) {
+        const double b_mag = bortle_zenith_mag_arcsec2(bortle);
+        Snapshot s = snapshot(2.0, sun_at_zenith_deg(130.0));
+        s.settings.night_sky_cd_m2 = static_cast<float>(sky_brightness_cd_m2(b_mag));
+        const SkyJudge judge(scene, s);
+        const std::vector<double> light = each_star_light(r, f, s, vmag);
+        double faintest = -99.0, faintest_seen = -99.0;
+        for (size_t i = 0; i < stars.size(); ++i) {
+            const double t = judge.behind(stars[i]).y;
+            if (light[i] / (vacuum_flux(scene, vmag[i]) * t) > 0.05) {
+                faintest = vmag[i];
+                faintest_seen = vmag[i] - 2.5 * std::log10(t);  // through the air in front
+            }
+        }
+        std::printf(
+            "Bortle %d (%.2f mag/arcsec^2): faintest star drawn V = %.1f, %.2f through the air; "
+            "Schaefer's limit %.2f\n",
+            bortle, b_mag, faintest, faintest_seen, schaefer_nelm(b_mag));
+        EXPECT_NEAR(faintest_seen, schaefer_nelm(b_mag), 0.3) << "Bortle " << bortle;
+    }
 }

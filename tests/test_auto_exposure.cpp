@@ -10,6 +10,7 @@
 #include "master_node.hpp"
 #include "eclipse/shadow_casters.hpp"
 #include "scene/eclipse_geometry.hpp"
+#include "scene/night_sky.hpp"
 #include "scene/sim_time.hpp"
 #include "show_script.hpp"
 #include "support/test_support.hpp"
@@ -72,6 +73,42 @@ TEST(AutoExposure, IsOneDeterministicValuePerFrameInTheSnapshot) {
     f.cluster.output.exposure = 0.25;
     const AutoExposure off(f.cluster, f.scene);
     EXPECT_FLOAT_EQ(make_frame_snapshot(f.cluster, f.scene, f.show, 5, &off).settings.exposure, 0.25f);
+}
+
+// Night vision is a switch of the eye's adaptation: in the snapshot's flags (every channel shows
+// the same) only when configured and only under the automatic exposure.
+TEST(AutoExposure, NightVisionTravelsInTheSnapshotOnlyWithTheEyesAdaptation) {
+    Fixture f;
+    const AutoExposure ae(f.cluster, f.scene);
+    EXPECT_FALSE(night_vision_of(make_frame_snapshot(f.cluster, f.scene, f.show, 12, &ae).settings.flags));
+    f.cluster.output.auto_exposure.night_vision = true;
+    const AutoExposure night(f.cluster, f.scene);
+    const Snapshot on = make_frame_snapshot(f.cluster, f.scene, f.show, 12, &night);
+    EXPECT_TRUE(night_vision_of(on.settings.flags));
+    EXPECT_GT(on.settings.adapted_cd_m2, 0.0f);
+    f.cluster.output.auto_exposure.enabled = false;
+    const AutoExposure fixed(f.cluster, f.scene);
+    EXPECT_FALSE(night_vision_of(make_frame_snapshot(f.cluster, f.scene, f.show, 12, &fixed).settings.flags));
+}
+
+// The night sky's own glow is part of what the eye adapts to: a city sky (Bortle 8) is metered,
+// not a black sky at the exposure's clamp.
+TEST(AutoExposure, MetersTheNightSkysGlow) {
+    Fixture f;
+    const AutoExposure ae(f.cluster, f.scene);
+    Snapshot night = with_sun_at(make_frame_snapshot(f.cluster, f.scene, f.show, 28), f.scene, 130.0);
+    ShowSettings settings;
+    Snapshot dark = night;
+    finish_frame_snapshot(dark, settings, f.cluster, f.scene, 28, 0.5, &ae, nullptr);
+    settings.sky_brightness = 18.0;
+    finish_frame_snapshot(night, settings, f.cluster, f.scene, 28, 0.5, &ae, nullptr);
+    const double zenith = sky_brightness_cd_m2(18.0);
+    EXPECT_FLOAT_EQ(night.settings.night_sky_cd_m2, static_cast<float>(zenith));
+    std::printf("city sky: adapted to %.3g cd/m^2 (zenith %.3g), exposure %.3g; black sky: exposure %.3g\n",
+                night.settings.adapted_cd_m2, zenith, night.settings.exposure, dark.settings.exposure);
+    EXPECT_GT(night.settings.adapted_cd_m2, 0.8 * zenith);  // brighter toward the horizon, less with height
+    EXPECT_LT(night.settings.adapted_cd_m2, 2.5 * zenith);
+    EXPECT_LT(night.settings.exposure, 0.1 * dark.settings.exposure);
 }
 
 // In totality the sky the exposure sees is shadowed too: the exposure opens up by orders of

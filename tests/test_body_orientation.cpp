@@ -38,6 +38,8 @@ TEST(BodyOrientation, EastIsRightAndNorthIsUpFromAboveLongitudeZero) {
     scene_json["bodies"][1]["texture"] = tex_path;
     scene_json["bodies"][1].erase("atmosphere");  // the texture's own colours, not the sky's haze
     scene_json["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    if (scene_json.contains("overlays"))
+        scene_json["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     scene_json["stars"]["magnitude_limit"] = -2.0;  // no stars in this picture
     test::write_text(dir + "/scene.json", scene_json.dump());
     const SceneConfig scene = load_scene_config(dir + "/scene.json");

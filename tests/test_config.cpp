@@ -222,6 +222,7 @@ TEST(Config, AtmosphereAndExposureErrorsAreNamed) {
     const std::string dir = test::scratch_dir("config/atmosphere");
     json s = json::parse(test::read_text(test::source_path("configs/scenes/earth-physical.json")));
     s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     s["bodies"][1]["texture"] = "generated:earth";
     auto scene_error = [&](const json& scene, const std::string& field, const std::string& words) {
         test::write_text(dir + "/scene.json", scene.dump());
@@ -239,6 +240,23 @@ TEST(Config, AtmosphereAndExposureErrorsAreNamed) {
     bad = s;
     bad["bodies"][1]["atmosphere"]["preset"] = "venus";
     scene_error(bad, "bodies[1].atmosphere.preset", "earth");
+    // The night sky's brightness and the overlays.
+    bad = s;
+    bad["stars"]["bortle"] = 3;
+    bad["stars"]["sky_brightness"] = 20.0;
+    scene_error(bad, "stars.bortle", "not both");
+    bad = s;
+    bad["stars"]["bortle"] = 10;
+    scene_error(bad, "stars.bortle", "");
+    bad = s;
+    bad["overlays"]["figures"] = dir + "/no-such-figures.json";
+    scene_error(bad, "overlays.figures", "does not exist");
+    bad = s;
+    bad["overlays"]["grid_altaz"] = {{"width_deg", 50}};
+    scene_error(bad, "overlays.grid_altaz.width_deg", "");
+    bad = s;
+    bad["overlays"]["grid_galactic"] = json::object();
+    scene_error(bad, "overlays.grid_galactic", "");
     bad = s;
     bad["bodies"][1]["atmosphere"]["mie_g"] = 1.5;
     scene_error(bad, "bodies[1].atmosphere.mie_g", "");
@@ -271,6 +289,7 @@ TEST(Config, MissingTextureOrCatalogueStopsTheStartWithAClearError) {
     const std::string dir = test::scratch_dir("config/missing_files");
     json s = json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
     s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     s["bodies"][1]["texture"] = dir + "/no-such-earth.png";
     test::write_text(dir + "/scene.json", s.dump());
     try {

@@ -120,6 +120,7 @@ std::string write_cluster(const std::string& name, json cfg) {
 json shipped_scene() {
     json s = read_json(test::source_path("configs/scenes/earth-moon.json"));
     s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    s["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     s["bodies"][1]["texture"] = "generated:earth";
     return s;
 }

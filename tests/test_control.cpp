@@ -17,6 +17,7 @@
 #include "eclipse/shadow_casters.hpp"
 #include "master_node.hpp"
 #include "scene/ephemeris.hpp"
+#include "scene/night_sky.hpp"
 #include "scene/sim_time.hpp"
 #include "support/control_client.hpp"
 #include "support/test_support.hpp"
@@ -89,6 +90,14 @@ TEST(ControlCommand, ParsesTheLanguage) {
     EXPECT_EQ(c.value, "forced");
     EXPECT_NE(parse_error("set twinkle sparkle").find("not one of on, off, forced, show"), std::string::npos)
         << parse_error("set twinkle sparkle");
+    c = parse_control_line("set bortle 8");  // a class is a zenith brightness
+    EXPECT_EQ(c.setting, "sky_brightness");
+    EXPECT_DOUBLE_EQ(*c.number, bortle_zenith_mag_arcsec2(8));
+    EXPECT_DOUBLE_EQ(*parse_control_line("set sky_brightness 21.5").number, 21.5);
+    EXPECT_FALSE(parse_control_line("set bortle show").number);
+    EXPECT_NE(parse_error("set bortle 10").find("class 1..9"), std::string::npos) << parse_error("set bortle 10");
+    EXPECT_NE(parse_error("set bortle 2.5").find("class 1..9"), std::string::npos);
+    EXPECT_NE(parse_error("set sky_brightness 30").find("14..24"), std::string::npos);
     EXPECT_EQ(parse_control_line("play").show_file, "");
     EXPECT_EQ(parse_control_line("play shows/x.json").show_file, "shows/x.json");
     EXPECT_EQ(parse_control_line("pause").verb, ControlVerb::Pause);
@@ -300,9 +309,21 @@ TEST_F(DirectorFixture, PlayStopSettingsAndQuit) {
     apply("set twinkle show", 2);
     EXPECT_EQ(twinkle_mode_of(director->frame(2, no_device).snapshot.settings.flags), scene.stars.twinkle);
     apply("set exposure 3", 3);
+    apply("set bortle 8", 3);
     DirectedFrame d = director->frame(3, no_device);
     finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, 3, director->frame_interval_s(), nullptr, nullptr);
     EXPECT_FLOAT_EQ(d.snapshot.settings.exposure, 3.0f);
+    EXPECT_FLOAT_EQ(d.snapshot.settings.night_sky_cd_m2, static_cast<float>(sky_brightness_cd_m2(18.0)));
+    apply("show grid equatorial", 3);
+    EXPECT_TRUE(*director->frame(3, no_device).settings.overlays[static_cast<size_t>(OverlayKind::GridEquatorial)]);
+    apply("hide grid equatorial", 3);
+    EXPECT_FALSE(*director->frame(3, no_device).settings.overlays[static_cast<size_t>(OverlayKind::GridEquatorial)]);
+    apply("show overlays show", 3);
+    EXPECT_FALSE(director->frame(3, no_device).settings.overlays[static_cast<size_t>(OverlayKind::GridEquatorial)]);
+    apply("set bortle show", 3);
+    d = director->frame(3, no_device);
+    finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, 3, director->frame_interval_s(), nullptr, nullptr);
+    EXPECT_FLOAT_EQ(d.snapshot.settings.night_sky_cd_m2, 0.0f);  // the scene has none
     apply("set exposure auto", 4);
     d = director->frame(4, no_device);
     finish_frame_snapshot(d.snapshot, d.settings, cluster, scene, 4, director->frame_interval_s(), nullptr, nullptr);

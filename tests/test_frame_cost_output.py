@@ -15,7 +15,7 @@ def arg_value(args, name, default):
     return args[args.index(name) + 1] if name in args else default
 
 
-def check_line(line_no, line, size, read_back):
+def check_line(line_no, line, size, read_back, overlays):
     where = f"frame_cost stdout line {line_no}"
     try:
         j = json.loads(line)
@@ -54,7 +54,10 @@ def check_line(line_no, line, size, read_back):
     for name, ms in passes.items():
         if not isinstance(ms, (int, float)) or isinstance(ms, bool) or not math.isfinite(ms) or ms < 0:
             sys.exit(f"{where}: pass \"{name}\" has {ms!r} ms")
-    for name in ("stars", "sun and bodies", "atmosphere"):  # the earth-moon scene's passes
+    if j.get("overlays") != (overlays.split(",") if overlays else []):
+        sys.exit(f"{where}: overlays {j.get('overlays')!r}, asked for {overlays}")
+    # The earth-moon scene's passes; "overlays" only when they are shown.
+    for name in ("stars", "sun and bodies", "atmosphere") + (("overlays",) if overlays else ()):
         if name not in passes:
             sys.exit(f"{where}: no pass \"{name}\" in {sorted(passes)}")
     total = sum(passes.values()) + j["read_back_ms"]
@@ -77,7 +80,8 @@ def main():
     if run.returncode != 0:
         sys.exit(f"frame_cost exited with {run.returncode}")
     lines = [line for line in run.stdout.splitlines() if line.strip()]
-    seen = [check_line(n, line, size, "--read-back" in args) for n, line in enumerate(lines, 1)]
+    overlays = arg_value(args, "--overlays", "")
+    seen = [check_line(n, line, size, "--read-back" in args, overlays) for n, line in enumerate(lines, 1)]
     if seen != views:
         sys.exit(f"frame_cost printed views {seen}, asked for {views}")
     print(f"frame_cost: {len(seen)} JSON lines with every field")

@@ -42,6 +42,7 @@ double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722
 std::string write_scene(const std::string& dir, const std::string& visibility) {
     nlohmann::json s = nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
     s["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    if (s.contains("overlays")) s["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     for (auto& b : s["bodies"]) {
         b.erase("atmosphere");
         b["texture"] = "generated:" + b["name"].get<std::string>();

@@ -98,6 +98,7 @@ TEST(PlanetShapes, AFlattenedBodyWithAnAtmosphereIsRefused) {
     nlohmann::json scene = nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/earth-moon.json")));
     scene["bodies"][1]["flattening"] = 0.00335;
     scene["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
+    if (scene.contains("overlays")) scene["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     test::write_text(dir + "/scene.json", scene.dump());
     try {
         load_scene_config(dir + "/scene.json");

@@ -172,7 +172,9 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
         {"at_s": 2, "shadow_mode": "illustrative"},
         {"at_s": 4, "exposure": 2.5, "star_magnitude_limit": 4.0},
         {"at_s": 6, "exposure": "auto", "shadow_mode": "off"},
-        {"at_s": 8, "twinkle": "forced"}])");
+        {"at_s": 8, "twinkle": "forced"},
+        {"at_s": 8.5, "bortle": 8, "show": ["constellations", "grid equatorial"]},
+        {"at_s": 9.5, "hide": ["constellations"]}])");
     EXPECT_EQ(shadow_mode_of(show.evaluate(1.99, scene).settings.flags), scene.shadows.mode);
     EXPECT_EQ(twinkle_mode_of(show.evaluate(7.9, scene).settings.flags), scene.stars.twinkle);  // the scene's
     EXPECT_EQ(twinkle_mode_of(show.evaluate(8.0, scene).settings.flags), TwinkleMode::Forced);
@@ -186,6 +188,12 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     EXPECT_EQ(shadow_mode_of(show.evaluate(7.0, scene).settings.flags), ShadowMode::Off);
     EXPECT_DOUBLE_EQ(show.duration_s(), 10.0);
     EXPECT_EQ(*show.settings_at(9.0).twinkle, TwinkleMode::Forced);
+    // Overlays switched by events: none until 8.5 s, then two, then one of them hidden again.
+    EXPECT_FALSE(show.settings_at(8.4).overlays[static_cast<size_t>(OverlayKind::Constellations)]);
+    EXPECT_TRUE(*show.settings_at(9.0).overlays[static_cast<size_t>(OverlayKind::Constellations)]);
+    EXPECT_TRUE(*show.settings_at(9.0).overlays[static_cast<size_t>(OverlayKind::GridEquatorial)]);
+    EXPECT_FALSE(*show.settings_at(9.6).overlays[static_cast<size_t>(OverlayKind::Constellations)]);
+    EXPECT_TRUE(*show.settings_at(9.6).overlays[static_cast<size_t>(OverlayKind::GridEquatorial)]);
 
     // The master turns them into the snapshot every channel receives.
     ClusterConfig cfg = load_cluster_config(test::source_path("configs/dome-4ch.json"));
@@ -200,6 +208,10 @@ TEST(ShowScript, EventsSwitchRenderSettingsAtTheirTime) {
     // The twinkle clock is show time (frame x interval).
     EXPECT_FLOAT_EQ(f13.settings.twinkle_time_s, 6.5f);
     EXPECT_EQ(twinkle_mode_of(make_frame_snapshot(cfg, scene, show, 17).settings.flags), TwinkleMode::Forced);
+    // The night sky's brightness: none in the scene, a city's (Bortle 8, 18 mag/arcsec^2) from 8.5 s.
+    EXPECT_FLOAT_EQ(make_frame_snapshot(cfg, scene, show, 16).settings.night_sky_cd_m2, 0.0f);
+    EXPECT_NEAR(make_frame_snapshot(cfg, scene, show, 17).settings.night_sky_cd_m2, 1.08e5 * std::pow(10.0, -7.2),
+                1e-6);
 }
 
 TEST(ShowScript, BadEasingsAndEventsNameTheField) {
@@ -227,4 +239,9 @@ TEST(ShowScript, BadEasingsAndEventsNameTheField) {
     EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1}]})"), "events[0].at_s");
     EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"exposure":1,"glow":1}]})"),
               "events[0].glow");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"show":["grid galactic"]}]})"),
+              "events[0].show");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"bortle":12}]})"), "events[0].bortle");
+    EXPECT_EQ(field_of(R"({"keyframes":[)" + key + R"(],"events":[{"at_s":1,"bortle":3,"sky_brightness":20}]})"),
+              "events[0].bortle");
 }

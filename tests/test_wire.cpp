@@ -120,7 +120,7 @@ TEST(Snapshot, MalformedPayloadsAreRefused) {
     EXPECT_THROW(decode_snapshot(qb.data(), qb.size()), WireError);
     // A body count that the payload cannot hold.
     auto huge = good;
-    const size_t count_at = 8 + 8 + 24 + 32 + 28;
+    const size_t count_at = 8 + 8 + 24 + 32 + 32 + 4 * kOverlayCount;  // after the render settings
     huge[count_at] = 0xFF;
     huge[count_at + 1] = 0xFF;
     EXPECT_THROW(decode_snapshot(huge.data(), huge.size()), WireError);

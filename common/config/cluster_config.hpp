@@ -50,6 +50,7 @@ struct AutoExposureConfig {
     bool key_follows_adaptation = true;  // the key falls at night (exposure/eye_adaptation.hpp)
     double light_adaptation_s = 1.0;     // time constant toward a brighter view
     double dark_adaptation_s = 120.0;    // time constant toward a darker view
+    bool night_vision = false;           // colour fades and turns blue at night (shaders/shared/night_vision.glsl)
     double min_exposure = 1e-9;
     double max_exposure = 1e3;  // reached on a black (night, no-atmosphere) sky
 };

@@ -8,6 +8,7 @@
 #include "config/config_schema.hpp"
 #include "config/json_reader.hpp"
 #include "atmosphere/production_quality.hpp"
+#include "scene/night_sky.hpp"
 
 namespace cupola {
 
@@ -210,6 +211,31 @@ MilkyWayConfig read_milky_way(const JsonReader& m, const std::string& dir) {
     return c;
 }
 
+OverlayStyle read_overlay_style(const JsonReader& o, OverlayKind kind) {
+    OverlayStyle s = default_overlay_style(kind);
+    s.visible = o.declared_boolean("visible");
+    if (auto c = o.optional_dvec3("color")) s.color = *c;
+    if (o.has("width_deg")) s.width_deg = o.declared_number("width_deg");
+    if (o.has("text_deg")) s.text_deg = o.declared_number("text_deg");
+    s.fade_s = o.declared_number("fade_s");
+    o.reject_unknown_keys();
+    return s;
+}
+
+OverlaysConfig read_overlays(const JsonReader& o, const std::string& dir) {
+    OverlaysConfig c;
+    c.present = true;
+    c.figures = resolve_path(dir, o.string("figures"));
+    if (!fs::is_regular_file(c.figures)) o.fail("figures", "file \"" + c.figures + "\" does not exist");
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        const auto kind = static_cast<OverlayKind>(k);
+        const auto child = o.optional_child(overlay_names()[k]);
+        c.styles[k] = child ? read_overlay_style(*child, kind) : default_overlay_style(kind);
+    }
+    o.reject_unknown_keys();
+    return c;
+}
+
 StarFieldConfig read_stars(const JsonReader& st, const std::string& dir) {
     StarFieldConfig c;
     c.catalog = resolve_path(dir, st.string("catalog"));
@@ -218,11 +244,52 @@ StarFieldConfig read_stars(const JsonReader& st, const std::string& dir) {
     c.psf_sigma_arcmin = st.declared_number("psf_sigma_arcmin");
     c.zero_mag_flux = st.declared_number("zero_mag_flux");
     c.twinkle = twinkle_mode_from_name(st.declared_choice("twinkle"));
+    if (st.has("sky_brightness") && st.has("bortle")) st.fail("bortle", "give sky_brightness or bortle, not both");
+    if (st.has("sky_brightness")) c.sky_brightness_mag_arcsec2 = st.declared_number("sky_brightness", 0.0);
+    if (st.has("bortle"))
+        c.sky_brightness_mag_arcsec2 = bortle_zenith_mag_arcsec2(static_cast<int>(st.declared_integer("bortle", 0)));
     st.reject_unknown_keys();
     return c;
 }
 
 }  // namespace
+
+OverlayStyle default_overlay_style(OverlayKind kind) {
+    OverlayStyle s;
+    switch (kind) {
+        case OverlayKind::Constellations:
+            s.color = {0.25, 0.45, 0.85};
+            break;
+        case OverlayKind::ConstellationNames:
+            s.color = {0.35, 0.55, 0.9};
+            break;
+        case OverlayKind::Boundaries:
+            s.color = {0.45, 0.35, 0.2}, s.width_deg = 0.06;
+            break;
+        case OverlayKind::GridAltAz:
+            s.color = {0.2, 0.55, 0.25}, s.width_deg = 0.06;
+            break;
+        case OverlayKind::GridEquatorial:
+            s.color = {0.2, 0.35, 0.7}, s.width_deg = 0.06;
+            break;
+        case OverlayKind::GridEcliptic:
+            s.color = {0.7, 0.55, 0.15}, s.width_deg = 0.06;
+            break;
+        case OverlayKind::Horizon:
+            s.color = {0.8, 0.5, 0.25}, s.width_deg = 0.15;
+            break;
+        case OverlayKind::Meridian:
+            s.color = {0.6, 0.6, 0.6};
+            break;
+        case OverlayKind::Cardinals:
+            s.color = {0.95, 0.6, 0.3}, s.text_deg = 3.0;
+            break;
+        case OverlayKind::Labels:
+            s.color = {0.8, 0.8, 0.75}, s.text_deg = 1.2;
+            break;
+    }
+    return s;
+}
 
 SceneConfig load_scene_config(const std::string& file) {
     SceneConfig s;
@@ -240,6 +307,7 @@ SceneConfig load_scene_config(const std::string& file) {
     s.shadows = read_shadows(r.section("shadows"), s);
     if (auto g = r.optional_child("glare")) s.glare = read_glare(*g);
     if (auto m = r.optional_child("milky_way")) s.milky_way = read_milky_way(*m, dir);
+    if (auto o = r.optional_child("overlays")) s.overlays = read_overlays(*o, dir);
     r.reject_unknown_keys();
     return s;
 }

@@ -5,11 +5,13 @@
 // builds a scene without a file; test_config_schema checks they match the schema.
 #include <glm/glm.hpp>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "atmosphere/atmosphere_parameters.hpp"
+#include "overlay/overlay_kind.hpp"
 #include "shading/shared_types.hpp"
 #include "wire/snapshot.hpp"
 
@@ -95,6 +97,9 @@ struct StarFieldConfig {
     double psf_sigma_arcmin = 2.0;           // angular size of a star, cluster-wide
     double zero_mag_flux = 2.0e-3;           // integrated flux of a V=0 star in scene units x steradian
     TwinkleMode twinkle = TwinkleMode::Off;  // until a show or the presenter changes it
+    // The night sky's own zenith brightness, V mag/arcsec^2 (stars.sky_brightness, or a Bortle
+    // class's: common/scene/night_sky.hpp); none: only the light the atmosphere scatters.
+    std::optional<double> sky_brightness_mag_arcsec2;
 };
 
 // How a channel decides how much of a glare source is visible: from the whole cluster's
@@ -133,6 +138,26 @@ struct MilkyWayConfig {
     double latitude_extent_deg = 0.0;  // of the top row; 0: from the map's shape (square texels)
 };
 
+// One overlay's look (configs/schema/scene.schema.json, definitions.overlay_style).
+struct OverlayStyle {
+    bool visible = false;
+    glm::dvec3 color{0.6, 0.6, 0.6};  // display colour, linear 0..1
+    double width_deg = 0.1;           // line width, dome degrees
+    double text_deg = 1.6;            // text em height, dome degrees
+    double fade_s = 1.0;
+};
+
+// The presenter's overlays (common/overlay/overlay_kind.hpp). Absent from the scene: none.
+// The look an overlay has when the scene gives none: planetarium colours (blue figures, the
+// grids in the colours of their frames), lines 0.1 degrees wide (grids 0.06), text 1.6 degrees.
+OverlayStyle default_overlay_style(OverlayKind kind);
+
+struct OverlaysConfig {
+    bool present = false;
+    std::string figures;  // resolved path of the constellation data
+    std::array<OverlayStyle, kOverlayCount> styles;
+};
+
 struct SceneConfig {
     std::string file;
     std::vector<BodyConfig> bodies;
@@ -140,6 +165,7 @@ struct SceneConfig {
     ShadowConfig shadows;
     GlareConfig glare;
     MilkyWayConfig milky_way;
+    OverlaysConfig overlays;
 
     const BodyConfig* find(const std::string& name) const;
 };

@@ -336,6 +336,7 @@ std::vector<std::string> write_dome_frame(const ClusterConfig& config, const std
     out_meta.renderer = first.renderer;
     out_meta.tone_white = first.tone_white;  // the snapshot's, as the exposure: every channel's
     out_meta.adapted_cd_m2 = first.adapted_cd_m2;
+    out_meta.night_vision = first.night_vision;
     // The frame's own exposure (the master's auto exposure varies it per frame; all channels
     // share it), else the configured one.
     const double exposure = first.exposure > 0.0 ? first.exposure : config.output.exposure;

@@ -33,6 +33,7 @@ constexpr const char* kAttrHash = "cupola:snapshot_hash";
 constexpr const char* kAttrRenderer = "cupola:renderer";
 constexpr const char* kAttrExposure = "cupola:exposure";
 constexpr const char* kAttrToneWhite = "cupola:tone_white";
+constexpr const char* kAttrNightVision = "cupola:night_vision";
 constexpr const char* kAttrAdapted = "cupola:adapted_cd_m2";
 
 std::string fmt_double(double v) {
@@ -84,6 +85,7 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         spec.attribute(kAttrExposure, fmt_double(exposure));
         spec.attribute(kAttrToneWhite, fmt_double(meta.tone_white));
         spec.attribute(kAttrAdapted, fmt_double(meta.adapted_cd_m2));
+        spec.attribute(kAttrNightVision, meta.night_vision ? "1" : "0");
     } else {
         spec.attribute(kAttrChannel, meta.channel_id);
         if (meta.frame <= static_cast<uint64_t>(std::numeric_limits<int>::max()))
@@ -93,6 +95,7 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         spec.attribute(kAttrExposure, static_cast<float>(exposure));
         spec.attribute(kAttrToneWhite, static_cast<float>(meta.tone_white));
         spec.attribute(kAttrAdapted, static_cast<float>(meta.adapted_cd_m2));
+        spec.attribute(kAttrNightVision, meta.night_vision ? 1 : 0);
     }
     spec.attribute(kAttrChannelName, meta.channel_name);
     spec.attribute(kAttrSimTime, fmt_double(meta.sim_time_s));
@@ -135,8 +138,8 @@ void write_one(const fs::path& final_path, const std::string& format, const Imag
         spec.attribute("oiio:UnassociatedAlpha", 1);
         bdata.resize(n);
         for (size_t i = 0; i < n; i += 4) {
-            const glm::vec3 shown =
-                display_color(glm::vec3(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]) * ex, meta.tone_white);
+            const glm::vec3 shown = display_color(glm::vec3(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]) * ex,
+                                                  meta.tone_white, exposure, meta.night_adapted_cd_m2());
             for (int c = 0; c < 3; ++c)
                 bdata[i + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(shown[c]) * 255.0f));
             bdata[i + 3] = static_cast<unsigned char>(std::lround(clamp01(image.rgba[i + 3]) * 255.0f));
@@ -307,6 +310,8 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
         m.exposure = exposure;
         m.tone_white = tone_white;
         get_double_attr(spec, kAttrAdapted, m.adapted_cd_m2);
+        long long night = 0;
+        m.night_vision = get_int64_attr(spec, kAttrNightVision, night) && night == 1;
         *meta = std::move(m);
     }
     return img;
@@ -381,6 +386,14 @@ glm::vec3 display_color(const glm::vec3& linear, double tone_white) {
     const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
                            std::isnan(linear.z) ? 0.0f : linear.z);
     return shading::gamut_map_to_unit_cube(shading::tone_curve(finite, static_cast<float>(tone_white)));
+}
+
+glm::vec3 display_color(const glm::vec3& linear, double tone_white, double exposure, double night_adapted_cd_m2) {
+    const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
+                           std::isnan(linear.z) ? 0.0f : linear.z);
+    return display_color(
+        shading::night_vision(finite, static_cast<float>(exposure), static_cast<float>(night_adapted_cd_m2)),
+        tone_white);
 }
 
 float linear_to_srgb(float linear) {

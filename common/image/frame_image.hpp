@@ -47,6 +47,12 @@ struct FrameMetadata {
     // from the frame's snapshot, recorded as cupola:tone_white and cupola:adapted_cd_m2.
     double tone_white = 0.0;
     double adapted_cd_m2 = 0.0;
+    // Whether the eye's night vision (shaders/shared/night_vision.glsl) at adapted_cd_m2 is part of
+    // the display transform, recorded as cupola:night_vision. A PNG keeps what the eye saw: reading
+    // it back does not undo night vision.
+    bool night_vision = false;
+    // The adaptation night vision works at: adapted_cd_m2 when it is on, 0 (off) otherwise.
+    double night_adapted_cd_m2() const { return night_vision ? adapted_cd_m2 : 0.0; }
 };
 
 // File name of a frame: "frame_000042.png" (six digits, more if needed).
@@ -76,6 +82,9 @@ Image read_image_radiance(const std::string& path, FrameMetadata* meta = nullptr
 // of white `tone_white` (shaders/shared/tone_curve.glsl; 0: none), then mapped into the unit cube
 // by shaders/shared/gamut_map.glsl (a NaN component counts as 0); unchanged when inside.
 glm::vec3 display_color(const glm::vec3& linear, double tone_white = 0.0);
+// The same after the eye's night vision (shaders/shared/night_vision.glsl): `linear` is the exposed
+// colour, `exposure` what it was exposed by, night_adapted_cd_m2 the eye's adaptation (0: off).
+glm::vec3 display_color(const glm::vec3& linear, double tone_white, double exposure, double night_adapted_cd_m2);
 float linear_to_srgb(float linear);
 float srgb_to_linear(float encoded);
 

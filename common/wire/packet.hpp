@@ -1,5 +1,5 @@
 #pragma once
-// One UDP datagram of the Cupola wire protocol (version 3: the snapshot carries the display white and adaptation). All
+// One UDP datagram of the Cupola wire protocol (version 4: the snapshot carries the night sky's brightness). All
 // fields little-endian.
 //
 //  offset size field
@@ -30,7 +30,7 @@
 namespace cupola {
 
 constexpr uint32_t kMagic = 0x4C505543u;
-constexpr uint16_t kProtocolVersion = 3;
+constexpr uint16_t kProtocolVersion = 4;
 constexpr uint16_t kMasterSender = 0xFFFF;
 constexpr size_t kHeaderSize = 60;
 constexpr size_t kTagSize = 32;

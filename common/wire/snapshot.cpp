@@ -81,6 +81,8 @@ std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
     w.f32(s.settings.tone_white);
     w.f32(s.settings.adapted_cd_m2);
     w.f32(s.settings.twinkle_time_s);
+    w.f32(s.settings.night_sky_cd_m2);
+    for (float a : s.settings.overlay_alpha) w.f32(a);
     w.u32(static_cast<uint32_t>(s.bodies.size()));
     for (const auto& b : s.bodies) {
         w.u16(b.id);
@@ -122,6 +124,12 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
     s.settings.adapted_cd_m2 = finite_f(r, "settings.adapted_cd_m2");
     if (s.settings.adapted_cd_m2 < 0.0f) throw WireError("field 'settings.adapted_cd_m2' must not be negative");
     s.settings.twinkle_time_s = finite_f(r, "settings.twinkle_time_s");
+    s.settings.night_sky_cd_m2 = finite_f(r, "settings.night_sky_cd_m2");
+    if (s.settings.night_sky_cd_m2 < 0.0f) throw WireError("field 'settings.night_sky_cd_m2' must not be negative");
+    for (float& a : s.settings.overlay_alpha) {
+        a = finite_f(r, "settings.overlay_alpha");
+        if (a < 0.0f || a > 1.0f) throw WireError("field 'settings.overlay_alpha' must be in [0, 1]");
+    }
     uint32_t nb = r.u32("body_count");
     if (nb > kMaxBodies) throw WireError("body_count " + std::to_string(nb) + " exceeds " + std::to_string(kMaxBodies));
     s.bodies.resize(nb);

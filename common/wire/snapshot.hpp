@@ -5,6 +5,9 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "overlay/overlay_kind.hpp"
+
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,7 +33,8 @@ enum class AlignmentPattern : uint8_t {
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;  // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern; 5..6: twinkle)
+    uint32_t flags = 0;  // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern; 5..6: twinkle;
+                         // 7: night vision)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     // The display curve's white: the exposed luminance shown as white (shaders/shared/tone_curve.glsl);
     // 0: no curve (a fixed exposure). And the eye's adapted luminance, cd/m^2 (0: not metered).
@@ -40,6 +44,12 @@ struct RenderSettings {
     // The stars' twinkle clock, seconds of show time (wraps at 4096 s): one value for the whole
     // cluster, so every channel twinkles alike (shaders/shared/star_twinkle.glsl).
     float twinkle_time_s = 0.0f;
+    // The night sky's own zenith luminance, cd/m^2 (airglow and light pollution; 0: none): the
+    // scene's, a show's or the presenter's (shaders/shared/night_sky.glsl).
+    float night_sky_cd_m2 = 0.0f;
+    // Each overlay's opacity, 0..1, in OverlayKind's order (common/overlay/overlay_kind.hpp): the
+    // master fades them in and out, one value for the whole cluster.
+    std::array<float, kOverlayCount> overlay_alpha{};
     bool operator==(const RenderSettings&) const = default;
 };
 
@@ -110,6 +120,11 @@ inline TwinkleMode twinkle_mode_of(uint32_t flags) {
 inline uint32_t with_twinkle_mode(uint32_t flags, TwinkleMode m) {
     return (flags & ~kTwinkleMask) | (static_cast<uint32_t>(m) << kTwinkleShift);
 }
+// RenderSettings::flags bit 7: the display transform includes the eye's night vision at the
+// snapshot's adapted luminance (shaders/shared/night_vision.glsl).
+constexpr uint32_t kNightVisionBit = 0x1u << 7;
+inline bool night_vision_of(uint32_t flags) { return (flags & kNightVisionBit) != 0; }
+
 // "off", "on", "forced" (in TwinkleMode's order).
 const std::vector<std::string>& twinkle_mode_names();
 // Throws std::invalid_argument naming the word and the choices.

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "config/scene_config.hpp"
+#include "overlay/overlay_kind.hpp"
+#include "scene/night_sky.hpp"
 #include "scene/sim_time.hpp"
 #include "wire/snapshot.hpp"
 
@@ -40,7 +42,8 @@ const std::string& control_help() {
     static const std::string text =
         "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
-        "set star_limit <mag>|show | set twinkle on|off|forced|show | pattern grid|white|black|off|show | status | "
+        "set star_limit <mag>|show | set twinkle on|off|forced|show | set sky_brightness <mag>|show | "
+        "set bortle <1-9>|show | pattern grid|white|black|off|show | status | "
         "quit | help";
     return text;
 }
@@ -104,8 +107,25 @@ void parse_time(const Words& w, ControlCommand& c) {
     }
 }
 
+// "set sky_brightness <mag/arcsec^2>|show" or "set bortle <1..9>|show": both give c.number in
+// mag/arcsec^2, the setting named sky_brightness.
+void parse_sky_brightness(const Words& w, ControlCommand& c) {
+    const bool bortle = c.setting == "bortle";
+    c.setting = "sky_brightness";
+    if (c.value == "show") return;
+    const double x = parse_number(w[2], "set " + w[1]);
+    if (bortle) {
+        if (x != std::floor(x) || x < 1.0 || x > 9.0)
+            throw ControlError("set bortle: must be a class 1..9, not " + w[2]);
+        c.number = bortle_zenith_mag_arcsec2(static_cast<int>(x));
+    } else {
+        if (!(x >= 14.0) || x > 24.0) throw ControlError("set sky_brightness: must be 14..24 mag/arcsec2, not " + w[2]);
+        c.number = x;
+    }
+}
+
 void parse_set(const Words& w, ControlCommand& c) {
-    expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit|twinkle <value>");
+    expect_count(w, 3, 3, "set shadow_mode|exposure|star_limit|twinkle|sky_brightness|bortle <value>");
     c.verb = ControlVerb::Set;
     c.setting = lower_case(w[1]);
     c.value = lower_case(w[2]);
@@ -132,8 +152,11 @@ void parse_set(const Words& w, ControlCommand& c) {
         const auto& n = twinkle_mode_names();
         if (c.value != "show" && std::find(n.begin(), n.end(), c.value) == n.end())
             throw ControlError("set twinkle: \"" + w[2] + "\" is not one of on, off, forced, show");
+    } else if (c.setting == "sky_brightness" || c.setting == "bortle") {
+        parse_sky_brightness(w, c);
     } else {
-        throw ControlError("set: \"" + w[1] + "\" is not shadow_mode, exposure, star_limit or twinkle");
+        throw ControlError("set: \"" + w[1] +
+                           "\" is not shadow_mode, exposure, star_limit, twinkle, sky_brightness or bortle");
     }
 }
 
@@ -144,6 +167,22 @@ void parse_pattern(const Words& w, ControlCommand& c) {
     const auto& n = alignment_pattern_names();
     if (c.pattern != "show" && std::find(n.begin(), n.end(), c.pattern) == n.end())
         throw ControlError("pattern: \"" + w[1] + "\" is not one of grid, white, black, off, show");
+}
+
+// "show NAME..." / "hide NAME..." (the words after the verb are the overlay's name, as in
+// "show grid equatorial"), or "show overlays show".
+void parse_overlay(const Words& w, ControlCommand& c) {
+    expect_count(w, 2, 4, w[0] + " <overlay>");
+    c.verb = ControlVerb::Overlay;
+    std::string name;
+    for (size_t i = 1; i < w.size(); ++i) name += (i > 1 ? " " : "") + lower_case(w[i]);
+    if (name == "overlays show") return;  // the show's overlays again
+    c.overlay_shown = lower_case(w[0]) == "show";
+    try {
+        c.overlay = static_cast<size_t>(overlay_from_name(name));
+    } catch (const std::invalid_argument& e) {
+        throw ControlError(w[0] + ": " + e.what());
+    }
 }
 
 }  // namespace
@@ -175,6 +214,8 @@ ControlCommand parse_control_line(const std::string& line) {
         parse_set(w, c);
     } else if (verb == "pattern") {
         parse_pattern(w, c);
+    } else if (verb == "show" || verb == "hide") {
+        parse_overlay(w, c);
     } else {
         throw ControlError("unknown command \"" + w[0] + "\"; " + control_help());
     }

@@ -13,8 +13,13 @@
 //   set exposure <x>|auto|show     fixed exposure, the cluster's (auto) exposure, or the show's
 //   set star_limit <mag>|show      faintest star drawn
 //   set twinkle on|off|forced|show the stars' twinkling, or the show's (the scene's) again
+//   set sky_brightness <mag>|show  the night sky's zenith brightness (V mag/arcsec^2), or the show's
+//   set bortle <1..9>|show         the same as a Bortle class
 //   pattern grid|white|black|off|show  alignment pattern on every channel instead of the scene
 //                                  (docs/ALIGNMENT.md); "show": the show's pattern again
+//   show|hide <overlay>            fade an overlay in or out ("show grid equatorial", "hide
+//                                  constellations"; common/overlay/overlay_kind.hpp); "show
+//                                  overlays show": every overlay as the show has it again
 //   status                         one JSON line: frame, mode, time, rate, camera, show
 //   quit                           stop the show and the cluster
 //   help                           the list above
@@ -30,21 +35,38 @@ struct ControlError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-enum class ControlVerb { Goto, Mode, TimeRate, TimeSet, Play, Pause, Resume, Stop, Set, Pattern, Status, Quit, Help };
+enum class ControlVerb {
+    Goto,
+    Mode,
+    TimeRate,
+    TimeSet,
+    Play,
+    Pause,
+    Resume,
+    Stop,
+    Set,
+    Pattern,
+    Overlay,
+    Status,
+    Quit,
+    Help
+};
 
 struct ControlCommand {
     ControlVerb verb = ControlVerb::Help;
-    std::string body;               // goto, mode (optional): as typed
-    std::optional<double> seconds;  // goto: flight duration
-    std::string nav_mode;           // mode: orbit | fly | walk
-    double rate = 1.0;              // time rate
-    double sim_time_s = 0.0;        // time set: seconds since J2000 TT
-    std::string utc;                // time set: as typed
-    std::string show_file;          // play: as typed ("" = resume)
-    std::string setting;            // set: shadow_mode | exposure | star_limit | twinkle
-    std::string value;              // set: the value as typed (lower case)
-    std::optional<double> number;   // set exposure / star_limit: the value when it is a number
-    std::string pattern;            // pattern: off | grid | white | black | show
+    std::string body;                   // goto, mode (optional): as typed
+    std::optional<double> seconds;      // goto: flight duration
+    std::string nav_mode;               // mode: orbit | fly | walk
+    double rate = 1.0;                  // time rate
+    double sim_time_s = 0.0;            // time set: seconds since J2000 TT
+    std::string utc;                    // time set: as typed
+    std::string show_file;              // play: as typed ("" = resume)
+    std::optional<size_t> overlay;      // show / hide: the OverlayKind (none: every overlay)
+    std::optional<bool> overlay_shown;  // show / hide; none: the show's again ("show overlays show")
+    std::string setting;                // set: shadow_mode | exposure | star_limit | twinkle | sky_brightness
+    std::string value;                  // set: the value as typed (lower case)
+    std::optional<double> number;       // set exposure / star_limit: the value when it is a number
+    std::string pattern;                // pattern: off | grid | white | black | show
 };
 
 // Parses one line (without its newline). Throws ControlError on anything else.

@@ -62,10 +62,16 @@ vec2 star_sky_behind(AtmosphereParams a, sampler2D t0, sampler2D t1, sampler2D t
 // How much of a star of visual magnitude v_mag shows, 0 to 1, given star_sky_behind's `behind`
 // and the factor that turns its luminance into cd/m^2: 1 where there is no air, 0 behind the
 // ground or below the threshold, rising to 1 over STAR_FADE_MAG above it.
-float star_sky_weight(vec2 behind, float to_cd_m2, float v_mag) {
+// glow_cd_m2: the night sky's own light behind the star (shared/night_sky.glsl), added to the
+// scattered sunlight and moonlight.
+float star_sky_weight_over(vec2 behind, float to_cd_m2, float glow_cd_m2, float v_mag) {
     if (behind.x < 0.0) return 1.0;
     if (behind.y <= 0.0) return 0.0;
     float seen_mag = v_mag - 2.5 * STAR_LOG10_2 * log2(behind.y);
-    float limit_mag = eye_limiting_magnitude(behind.x * to_cd_m2);
+    float limit_mag = eye_limiting_magnitude(behind.x * to_cd_m2 + glow_cd_m2);
     return clamp((limit_mag - seen_mag) / STAR_FADE_MAG, 0.0, 1.0);
+}
+
+float star_sky_weight(vec2 behind, float to_cd_m2, float v_mag) {
+    return star_sky_weight_over(behind, to_cd_m2, 0.0, v_mag);
 }

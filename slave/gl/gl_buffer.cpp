@@ -21,6 +21,7 @@ GlVertexBuffer::GlVertexBuffer(std::vector<int> components) {
 }
 
 GlVertexBuffer::~GlVertexBuffer() {
+    if (ebo_) glDeleteBuffers(1, &ebo_);
     glDeleteBuffers(1, &vbo_);
     glDeleteVertexArrays(1, &vao_);
 }
@@ -40,6 +41,15 @@ void GlVertexBuffer::upload(const std::vector<float>& data) {
     glNamedBufferData(vbo_, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.empty() ? nullptr : data.data(),
                       GL_STATIC_DRAW);
     count_ = stride_ ? static_cast<int>(data.size()) / stride_ : 0;
+}
+
+void GlVertexBuffer::upload_indices(const std::vector<GLuint>& indices) {
+    if (!ebo_) {
+        glCreateBuffers(1, &ebo_);
+        glVertexArrayElementBuffer(vao_, ebo_);
+    }
+    glNamedBufferData(ebo_, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
+                      indices.empty() ? nullptr : indices.data(), GL_STATIC_DRAW);
 }
 
 }  // namespace cupola

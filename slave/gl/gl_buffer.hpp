@@ -16,6 +16,8 @@ public:
 
     // Replaces the contents; data holds whole vertices.
     void upload(const std::vector<float>& data);
+    // Replaces the index buffer (made on first use) that indexed draws of this array read.
+    void upload_indices(const std::vector<GLuint>& indices);
     int vertex_count() const { return count_; }
     void bind() const { glBindVertexArray(vao_); }
     // Takes one more attribute, `location`, from another buffer (not owned): `components` floats
@@ -23,7 +25,7 @@ public:
     void add_float_attribute(GLuint location, GLuint buffer, int components = 1);
 
 private:
-    GLuint vao_ = 0, vbo_ = 0;
+    GLuint vao_ = 0, vbo_ = 0, ebo_ = 0;
     int stride_ = 0;  // floats per vertex
     int count_ = 0;
 };

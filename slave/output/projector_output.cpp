@@ -33,7 +33,7 @@ ProjectorOutput::ProjectorOutput(OutputSurface& surface, const SinkConfig& sinks
 ProjectorOutput::~ProjectorOutput() { finish(); }
 
 double ProjectorOutput::take(SceneRenderer& channel, const FrameMetadata& meta, double exposure) {
-    if (warp_) warp_->draw(channel.color().id(), exposure, meta.tone_white);
+    if (warp_) warp_->draw(channel.color().id(), exposure, meta.tone_white, meta.night_adapted_cd_m2());
     const ProjectorFrame frame(channel, warp_.get(), meta, exposure, read_backs_);
     for (const auto& sink : sinks_) sink->take(frame);
     return files_ ? files_->last_wait_ms() : 0.0;

@@ -150,7 +150,7 @@ WarpPass::WarpPass(std::optional<ProjectorWarp> warp, int content_width, int con
 
 WarpPass::~WarpPass() = default;
 
-void WarpPass::draw(unsigned content_texture, double exposure, double tone_white) {
+void WarpPass::draw(unsigned content_texture, double exposure, double tone_white, double night_adapted_cd_m2) {
     const GlProgram& p = gpu_->program;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->both_fbo);
     glViewport(0, 0, width_, height_);
@@ -170,6 +170,7 @@ void WarpPass::draw(unsigned content_texture, double exposure, double tone_white
     p.set("u_content_size", glm::vec2(content_width_, content_height_));
     p.set("u_exposure", static_cast<float>(exposure));
     p.set("u_tone_white", static_cast<float>(tone_white));
+    p.set("u_night_adapted_cd_m2", static_cast<float>(night_adapted_cd_m2));
     p.set("u_gamma", static_cast<float>(warp_ ? warp_->projector_gamma : 2.2));
     p.set("u_identity", warp_ ? 0 : 1);
     const bool srgb = options_.encode == WarpOptions::Encode::Srgb;

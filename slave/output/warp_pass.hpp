@@ -69,9 +69,10 @@ public:
     // Needs a current GL 4.5 context. Draws the projector raster from the content texture (GL
     // texture name of linear RGBA32F radiance, v up: GL's row 0 at the bottom) times exposure into
     // two targets: linear (RGBA32F, after alpha and beta, before encode) and encoded (RGBA8, for
-    // the projector), through the display curve of white `tone_white` (0: none). Leaves the draw
-    // framebuffer bound to the encoded target.
-    void draw(unsigned content_texture, double exposure, double tone_white = 0.0);
+    // the projector), through the eye's night vision at night_adapted_cd_m2 (0: none) and the
+    // display curve of white `tone_white` (0: none). Leaves the draw framebuffer bound to the
+    // encoded target.
+    void draw(unsigned content_texture, double exposure, double tone_white = 0.0, double night_adapted_cd_m2 = 0.0);
 
     unsigned linear_framebuffer() const;
     unsigned encoded_framebuffer() const;

@@ -276,6 +276,10 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     out.center_dir_world = glm::vec3(glm::normalize(to_centre));
     out.sun_world = glm::vec3(ps.dir_world);
     out.to_cd_m2 = static_cast<float>(atmosphere::sky_to_cd_m2(ps.solar_scale, f.light.radiance));
+    if (f.snap)
+        out.night_sky_cd_m2 =
+            shading::night_sky_at_height(f.snap->settings.night_sky_cd_m2,
+                                         static_cast<float>(planet->sphere.distance_m - out.params.bottom_radius_m));
     const MoonOnAir moon = moon_on_air(f.moonlight, f.view.camera_position_m, planet->state->position_m, ps.dir_world,
                                        ps.irradiance, atm->model());
     if (moon.on) {  // the same rule as the atmosphere's draw
@@ -357,6 +361,12 @@ void AtmospherePass::set_sky_in_front(const GlProgram& p) const {
     p.set("u_halo_map", halo_->grid().map);
 }
 
+glm::vec3 night_sky_glow(float night_sky_cd_m2, double height_m, double sun_radiance) {
+    const double at_height = shading::night_sky_at_height(1.0f, static_cast<float>(height_m));
+    return shading::night_sky_rgb(night_sky_cd_m2) *
+           static_cast<float>(at_height * sun_radiance / atmosphere::kPhysicalSunRadiance_cd_m2);
+}
+
 AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     AtmosphereDrawExtras e;
     e.halo = halo_for(step);
@@ -364,6 +374,10 @@ AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     e.moon = l.moon;
     e.disc_weight = l.body->light.disc_weight;
     e.supersample = l.body->light.supersample;
+    if (frame_->snap)
+        e.night_sky = night_sky_glow(frame_->snap->settings.night_sky_cd_m2,
+                                     l.body->sphere.distance_m - l.atmosphere->model().shader_params().bottom_radius_m,
+                                     frame_->light.radiance);
     if (draws_surface(*frame_, *l.body)) {
         e.surface_map = bodies_->texture(l.body->body->id);
         e.map_lod = BodyPass::map_lod(frame_->view, l.body->sphere, *l.body->body, e.surface_map->width());
@@ -451,6 +465,7 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
         if (extras.moon.on) set_moon_uniforms(p, view, atm, sphere, extras.moon, ps.solar_scale);
         p.set("u_disc_weight", static_cast<float>(extras.disc_weight));
         p.set("u_supersample", extras.supersample);
+        p.set("u_night_sky", extras.night_sky);
     };
     if (!extras.surface_map || shading::atm_camera_outside(m.shader_params(), table_in.x)) {
         // Only the pixels that can see the top of the atmosphere: its cap seen from outside (a

@@ -89,7 +89,13 @@ struct AtmosphereDrawExtras {
     MoonOnAir moon;                       // the Moon's light on the air (a look-up from inside only)
     double disc_weight = 1.0;             // the planet's disc weight (passes/planet_light): the draw's times it
     int supersample = 1;                  // rays a pixel along each axis (a small disc seen from outside)
+    glm::vec3 night_sky{0.0f};            // the night sky's own glow at the zenith, scene units (night_sky_glow)
 };
+
+// The night sky's own glow (shaders/shared/night_sky.glsl) over a camera at height_m above the
+// ground, at the zenith, in scene units for a Sun of disc radiance sun_radiance: the snapshot's
+// zenith luminance (cd/m^2) read against the physical Sun (atmosphere/solar_scale.hpp).
+glm::vec3 night_sky_glow(float night_sky_cd_m2, double height_m, double sun_radiance);
 
 class AtmospherePass : public RenderPass, public StarSkySource, public SkyInFrontSource {
 public:

@@ -19,6 +19,7 @@ struct StarSky {
     glm::vec3 center_dir_world{0.0f, 0.0f, -1.0f};  // unit, camera -> planet centre
     glm::vec3 sun_world{0.0f, 0.0f, 1.0f};          // unit, planet centre -> Sun
     float to_cd_m2 = 0.0f;                          // the table's values (per unit solar irradiance) to cd/m^2
+    float night_sky_cd_m2 = 0.0f;  // the night sky's own glow at the zenith over the camera (shared/night_sky.glsl)
     // The moonlit sky (common/atmosphere/moonlit_sky.hpp): the Moon's table (null when its light is off), its
     // zenith cosine on the tables' grid, its direction (unit, camera -> Moon) and its luminous
     // irradiance over the Sun's.

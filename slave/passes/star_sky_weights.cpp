@@ -49,7 +49,7 @@ glm::vec3 StarSkyWeights::on_grid(const glm::vec3& unit) {
 bool StarSkyWeights::update(const StarSky& sky, int star_count) {
     const glm::vec3 c = on_grid(sky.center_dir_world), s = on_grid(sky.sun_world), m = on_grid(sky.moon_world);
     const float moon_ratio = sky.moon_table ? sky.moon_ratio : 0.0f;
-    const std::array<float, 15> key{sky.table_in.x,
+    const std::array<float, 16> key{sky.table_in.x,
                                     sky.table_in.y,
                                     c.x,
                                     c.y,
@@ -63,7 +63,8 @@ bool StarSkyWeights::update(const StarSky& sky, int star_count) {
                                     m.x,
                                     m.y,
                                     m.z,
-                                    moon_ratio};
+                                    moon_ratio,
+                                    sky.night_sky_cd_m2};
     if (valid_ && key == key_) return false;
     const DrawTargetRestorer restore;
     fbo_.bind();
@@ -106,6 +107,7 @@ void StarSkyWeights::set_uniforms(const StarSky& sky, const glm::vec3& center_di
     program_.set("u_sky_center_dir", center_dir);
     program_.set("u_sky_sun", sun);
     program_.set("u_sky_to_cd_m2", sky.to_cd_m2);
+    program_.set("u_night_sky_cd_m2", sky.night_sky_cd_m2);
 }
 
 void StarSkyWeights::set_moon_uniforms(const StarSky& sky, const glm::vec3& moon) {

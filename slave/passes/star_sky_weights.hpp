@@ -55,7 +55,7 @@ private:
     GlProgram program_;
     GlEmptyVertexArray vao_;
     GLuint buffer_ = 0, draw_command_ = 0;
-    std::array<float, 15> key_{};
+    std::array<float, 16> key_{};
     bool valid_ = false;
     long renders_ = 0;
 };

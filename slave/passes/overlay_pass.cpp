@@ -1,0 +1,251 @@
+#include "passes/overlay_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "image/mip_chain.hpp"
+#include "overlay/constellation_figures.hpp"
+#include "overlay/overlay_lines.hpp"
+#include "passes/sphere_billboard.hpp"
+#include "passes/text_raster.hpp"
+
+namespace cupola {
+
+namespace {
+
+constexpr int kAtlasPx = 48;  // em height the glyphs are rasterized at
+constexpr int kAtlasWidth = 2048;
+constexpr int kAtlasPad = 3;             // texels between labels (their mipmaps do not bleed into each other)
+constexpr double kBesideGap_em = 0.6;    // a star's or body's name starts this far right of it
+constexpr int kArcsPerChunk = 16;        // arcs culled together against the channel
+constexpr double kCullSlack_rad = 0.02;  // more than any line's half width and margin
+
+// An arc's quad: vertices (dir, pole, lat, side) at a and b on either edge, and two triangles'
+// indices. An arc that continues the previous one along the same circle shares its two vertices
+// at the joint, so a tessellated circle costs two vertices an arc, not six.
+struct ArcMesh {
+    std::vector<float> vertices;
+    std::vector<GLuint> indices;
+    GLuint count = 0;
+    const SkyArc* last = nullptr;
+
+    void vertex(const SkyArc& arc, const glm::dvec3& d, float side) {
+        vertices.insert(vertices.end(), {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
+                                         static_cast<float>(arc.pole.x), static_cast<float>(arc.pole.y),
+                                         static_cast<float>(arc.pole.z), static_cast<float>(arc.lat_rad), side});
+        ++count;
+    }
+    void add(const SkyArc& arc) {
+        const bool continues = last && last->b == arc.a && last->pole == arc.pole && last->lat_rad == arc.lat_rad;
+        if (!continues) vertex(arc, arc.a, -1.0f), vertex(arc, arc.a, 1.0f);
+        const GLuint a_minus = count - 2, a_plus = count - 1;
+        vertex(arc, arc.b, -1.0f), vertex(arc, arc.b, 1.0f);
+        indices.insert(indices.end(), {a_minus, a_plus, count - 2, count - 2, a_plus, count - 1});
+        last = &arc;
+    }
+};
+
+// A shelf packer over an atlas kAtlasWidth wide: every label has the face's line height.
+struct Shelf {
+    int x = kAtlasPad, y = kAtlasPad, row_height = 0;
+    glm::ivec2 place(int w, int h) {
+        if (x + w + kAtlasPad > kAtlasWidth) {
+            x = kAtlasPad;
+            y += row_height + kAtlasPad;
+        }
+        row_height = std::max(row_height, h);
+        const glm::ivec2 at(x, y);
+        x += w + kAtlasPad;
+        return at;
+    }
+};
+
+}  // namespace
+
+OverlayPass::OverlayPass(const SceneConfig& scene)
+    : scene_(&scene),
+      line_program_("overlay_line.vert", "overlay_line.frag"),
+      label_program_("overlay_label.vert", "overlay_label.frag"),
+      body_labels_({3, 2, 2}) {
+    const std::vector<ConstellationFigure> figures = load_constellation_figures(scene.overlays.figures);
+    build_lines(figures);
+    build_labels(figures);
+}
+
+size_t OverlayPass::label_count(OverlayKind k) const {
+    return static_cast<size_t>(
+        std::count_if(labels_.begin(), labels_.end(), [&](const OverlayLabel& l) { return l.kind == k; }));
+}
+
+void OverlayPass::build_lines(const std::vector<ConstellationFigure>& figures) {
+    const auto arcs = overlay_lines(figures);
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        arcs_[k] = arcs[k].size();
+        if (arcs[k].empty()) continue;
+        chunks_[k] = arc_chunks(arcs[k], kArcsPerChunk);
+        ArcMesh mesh;
+        for (const SkyArc& a : arcs[k]) mesh.add(a);
+        lines_[k] = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 1, 1});
+        lines_[k]->upload(mesh.vertices);
+        lines_[k]->upload_indices(mesh.indices);
+    }
+}
+
+// Every label rasterized once (FreeType) into one atlas; each gets its quad in em units of its
+// overlay's text size.
+void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures) {
+    labels_ = overlay_labels(figures, *scene_);
+    std::vector<TextRaster> rasters;
+    std::vector<glm::ivec2> at;
+    Shelf shelf;
+    for (const OverlayLabel& l : labels_) {
+        rasters.push_back(rasterize_text(l.text, kAtlasPx));
+        at.push_back(shelf.place(rasters.back().width, rasters.back().height));
+    }
+    const int height = std::max(1, shelf.y + shelf.row_height + kAtlasPad);
+    std::vector<float> texels(static_cast<size_t>(kAtlasWidth) * height * 3, 0.0f);
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        const TextRaster& r = rasters[i];
+        for (int y = 0; y < r.height; ++y)
+            for (int x = 0; x < r.width; ++x) {
+                const size_t t = (static_cast<size_t>(at[i].y + y) * kAtlasWidth + at[i].x + x) * 3;
+                texels[t] = texels[t + 1] = texels[t + 2] = r.at(x, y);
+            }
+        const double em = glm::radians(scene_->overlays.styles[static_cast<size_t>(labels_[i].kind)].text_deg);
+        const float w = static_cast<float>(em * r.width / kAtlasPx), h = static_cast<float>(em * r.height / kAtlasPx);
+        const float x0 =
+            labels_[i].placement == LabelPlacement::Beside ? static_cast<float>(kBesideGap_em * em) : -0.5f * w;
+        LabelBox box;
+        box.corners = glm::vec4(x0, -0.5f * h, x0 + w, 0.5f * h);
+        // Raster row 0 (the top of the text) is atlas row at.y: texture t = row / height.
+        box.uv = glm::vec4(static_cast<float>(at[i].x) / kAtlasWidth, static_cast<float>(at[i].y + r.height) / height,
+                           static_cast<float>(at[i].x + r.width) / kAtlasWidth, static_cast<float>(at[i].y) / height);
+        boxes_.push_back(box);
+    }
+    atlas_ = std::make_unique<GlTexture>(kAtlasWidth, height, texels, box_filter_mip_chain(kAtlasWidth, height, texels),
+                                         GlTexture::Channels::Grey);
+    upload_static_labels();
+}
+
+std::vector<float> OverlayPass::label_vertices(const OverlayLabel&, const LabelBox& b, const glm::dvec3& anchor) const {
+    std::vector<float> v;
+    const auto vertex = [&](float x, float y, float u, float t) {
+        v.insert(v.end(), {static_cast<float>(anchor.x), static_cast<float>(anchor.y), static_cast<float>(anchor.z), x,
+                           y, u, t});
+    };
+    const glm::vec4 c = b.corners, uv = b.uv;
+    vertex(c.x, c.y, uv.x, uv.y), vertex(c.z, c.y, uv.z, uv.y), vertex(c.x, c.w, uv.x, uv.w);
+    vertex(c.x, c.w, uv.x, uv.w), vertex(c.z, c.y, uv.z, uv.y), vertex(c.z, c.w, uv.z, uv.w);
+    return v;
+}
+
+void OverlayPass::upload_static_labels() {
+    std::array<std::vector<float>, kOverlayCount> v;
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        if (labels_[i].body) continue;
+        const auto q = label_vertices(labels_[i], boxes_[i], labels_[i].anchor);
+        auto& dst = v[static_cast<size_t>(labels_[i].kind)];
+        dst.insert(dst.end(), q.begin(), q.end());
+    }
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        if (v[k].empty()) continue;
+        label_buffers_[k] = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 2, 2});
+        label_buffers_[k]->upload(v[k]);
+    }
+}
+
+// The bodies' names at their directions from the camera this frame (not the ground's own body).
+void OverlayPass::update_body_labels() {
+    std::vector<float> v;
+    const Snapshot& s = *frame_->snap;
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        const auto& body = labels_[i].body;
+        if (!body || *body >= s.bodies.size() || (frames_.ground_body && *frames_.ground_body == *body)) continue;
+        const glm::dvec3 to = s.bodies[*body].position_m - s.camera_position_m;
+        if (!(glm::length(to) > 0.0)) continue;
+        const auto q = label_vertices(labels_[i], boxes_[i], glm::normalize(to));
+        v.insert(v.end(), q.begin(), q.end());
+    }
+    body_labels_.upload(v);
+}
+
+int OverlayPass::prepare(const FrameContext& frame) {
+    frame_ = &frame;
+    const auto& alpha = frame.snap->settings.overlay_alpha;
+    if (std::all_of(alpha.begin(), alpha.end(), [](float a) { return a <= 0.0f; })) return 0;
+    frames_ = overlay_frames(*frame.snap, *scene_);
+    pixel_rad_ = static_cast<float>(pixel_angle_rad(*frame.view.frustum));
+    return 1;
+}
+
+glm::vec4 OverlayPass::color_of(size_t k) const {
+    const float exposure = std::max(frame_->snap->settings.exposure, 1e-30f);
+    return glm::vec4(glm::vec3(scene_->overlays.styles[k].color) / exposure, frame_->snap->settings.overlay_alpha[k]);
+}
+
+void OverlayPass::draw(const PassInputs&, int) {
+    glEnablei(GL_BLEND, 0);
+    glBlendFuncSeparatei(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // over; coverage stays
+    const glm::dmat3& to_channel = frame_->view.world_to_channel;
+    const glm::mat4 projection(frame_->view.frustum->projection(0.1, 10.0));
+    for (const GlProgram* p : {&line_program_, &label_program_}) {
+        p->use();
+        p->set("u_projection", projection);
+    }
+    update_body_labels();
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        if (frame_->snap->settings.overlay_alpha[k] <= 0.0f) continue;
+        const auto frame_to_world = frames_.to_world(overlay_frame_of(static_cast<OverlayKind>(k)));
+        if (!frame_to_world) continue;  // the horizon's overlays away from any ground
+        const glm::mat3 m(to_channel * *frame_to_world);
+        if (lines_[k]) draw_lines(k, m, color_of(k));
+        if (label_buffers_[k]) draw_labels(*label_buffers_[k], m, color_of(k));
+        if (static_cast<OverlayKind>(k) == OverlayKind::Labels && body_labels_.vertex_count() > 0)
+            draw_labels(body_labels_, glm::mat3(to_channel), color_of(k));
+    }
+    glDisablei(GL_BLEND, 0);
+    gl::check("overlay pass");
+}
+
+void OverlayPass::draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const {
+    line_program_.use();
+    line_program_.set("u_to_channel", to_channel);
+    line_program_.set("u_half_width_rad", static_cast<float>(0.5 * glm::radians(scene_->overlays.styles[k].width_deg)));
+    // The ramp's half pixel (at the widest pixel), and the chord's sag below an arc of the longest step.
+    line_program_.set("u_margin_rad", 0.5f * pixel_rad_ + 1.6e-4f);
+    line_program_.set("u_color", color);
+    offsets_.clear();
+    counts_.clear();
+    const glm::dvec4 tangents(frame_->view.tangents());
+    for (const ArcChunk& c : chunks_[k]) {
+        if (!cone_touches_frustum(glm::dvec3(to_channel * glm::vec3(c.centre)), c.radius_rad + kCullSlack_rad,
+                                  tangents))
+            continue;
+        const size_t first_index = 6 * static_cast<size_t>(c.first_arc);
+        if (!counts_.empty() && next_index_ == first_index) {
+            counts_.back() += 6 * c.arc_count;  // runs next to each other: one draw
+        } else {
+            offsets_.push_back(reinterpret_cast<const void*>(first_index * sizeof(GLuint)));
+            counts_.push_back(6 * c.arc_count);
+        }
+        next_index_ = first_index + 6 * static_cast<size_t>(c.arc_count);
+        arcs_drawn_ += c.arc_count;
+    }
+    if (counts_.empty()) return;
+    lines_[k]->bind();
+    glMultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(),
+                        static_cast<GLsizei>(counts_.size()));
+}
+
+void OverlayPass::draw_labels(const GlVertexBuffer& vb, const glm::mat3& to_channel, const glm::vec4& color) const {
+    label_program_.use();
+    label_program_.set("u_to_channel", to_channel);
+    label_program_.set("u_up", glm::vec3(frame_->view.world_to_channel * frames_.label_up_world));
+    label_program_.set("u_color", color);
+    atlas_->bind(0);
+    label_program_.set("u_atlas", 0);
+    vb.bind();
+    glDrawArrays(GL_TRIANGLES, 0, vb.vertex_count());
+}
+
+}  // namespace cupola

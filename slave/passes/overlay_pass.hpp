@@ -1,0 +1,76 @@
+#pragma once
+// The presenter's overlays (common/overlay/): constellation figures, names and boundaries, the
+// grids, the horizon and meridian, the cardinal points and the labels of bodies and bright stars,
+// drawn last over the frame. Everything is placed on the sky in world or dome coordinates from the
+// snapshot alone (overlay_frames.hpp) and sized in dome degrees, so a line or a label that crosses
+// the edge between two channels continues in both: a line pixel's coverage is its direction's
+// angle to the line's circle (shaders/overlay_line.*), a label is a quad on the sphere textured
+// with FreeType's glyphs (passes/text_raster.hpp) from one atlas, mipmapped.
+// Colours are display colours: drawn as colour / exposure, they show at the level asked for
+// whatever the exposure. Each overlay's opacity is the snapshot's (the master fades it).
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "config/scene_config.hpp"
+#include "gl/gl_buffer.hpp"
+#include "gl/gl_program.hpp"
+#include "gl/gl_texture.hpp"
+#include "overlay/arc_chunks.hpp"
+#include "overlay/overlay_frames.hpp"
+#include "overlay/overlay_labels.hpp"
+#include "passes/render_pass.hpp"
+
+namespace cupola {
+
+class OverlayPass : public RenderPass {
+public:
+    // Reads the scene's constellation data (throws std::runtime_error naming the file and field)
+    // and rasterizes every label once.
+    explicit OverlayPass(const SceneConfig& scene);
+
+    std::string name() const override { return "overlays"; }
+    PassIo io() const override { return {.writes_color = true}; }
+    int prepare(const FrameContext& frame) override;
+    void draw(const PassInputs& in, int step) override;
+
+    // Line arcs and labels each overlay holds (tests).
+    size_t arc_count(OverlayKind k) const { return arcs_[static_cast<size_t>(k)]; }
+    size_t label_count(OverlayKind k) const;
+    // Arcs given to the GPU since the pass was made: only the runs that can touch the channel.
+    long arcs_drawn() const { return arcs_drawn_; }
+
+private:
+    struct LabelBox {             // a label's quad: corners in tangent-plane radians, atlas uv
+        glm::vec4 corners{0.0f};  // x0, y0, x1, y1
+        glm::vec4 uv{0.0f};       // u0, v0 (bottom), u1, v1 (top)
+    };
+    void build_lines(const std::vector<ConstellationFigure>& figures);
+    void build_labels(const std::vector<ConstellationFigure>& figures);
+    void upload_static_labels();
+    void update_body_labels();
+    void draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const;
+    void draw_labels(const GlVertexBuffer& vb, const glm::mat3& to_channel, const glm::vec4& color) const;
+    glm::vec4 color_of(size_t k) const;
+    std::vector<float> label_vertices(const OverlayLabel& l, const LabelBox& box, const glm::dvec3& anchor) const;
+
+    const SceneConfig* scene_;
+    GlProgram line_program_, label_program_;
+    std::array<std::unique_ptr<GlVertexBuffer>, kOverlayCount> lines_;
+    std::array<size_t, kOverlayCount> arcs_{};
+    std::array<std::vector<ArcChunk>, kOverlayCount> chunks_;
+    mutable std::vector<const void*> offsets_;  // byte offsets into a line buffer's indices
+    mutable size_t next_index_ = 0;
+    mutable std::vector<GLsizei> counts_;
+    mutable long arcs_drawn_ = 0;
+    std::vector<OverlayLabel> labels_;
+    std::vector<LabelBox> boxes_;  // one per label
+    std::unique_ptr<GlTexture> atlas_;
+    std::array<std::unique_ptr<GlVertexBuffer>, kOverlayCount> label_buffers_;  // static labels, by overlay
+    GlVertexBuffer body_labels_;
+    const FrameContext* frame_ = nullptr;
+    OverlayFrames frames_;
+    float pixel_rad_ = 0.0f;
+};
+
+}  // namespace cupola
