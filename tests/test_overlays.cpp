@@ -147,6 +147,7 @@ TEST(OverlayControl, NamesShowHideAndTheShowsEvents) {
     c = parse_control_line("hide constellations");
     EXPECT_FALSE(*c.overlay_shown);
     EXPECT_FALSE(parse_control_line("show overlays show").overlay);
+    EXPECT_NE(control_help().find("show|hide <overlay>"), std::string::npos) << control_help();
     try {
         parse_control_line("show grid galactic");
         FAIL();

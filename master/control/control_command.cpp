@@ -43,7 +43,8 @@ const std::string& control_help() {
         "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
         "set star_limit <mag>|show | set twinkle on|off|forced|show | set sky_brightness <mag>|show | "
-        "set bortle <1-9>|show | pattern grid|white|black|off|show | status | "
+        "set bortle <1-9>|show | show|hide <overlay> | show overlays show | pattern grid|white|black|off|show | "
+        "status | "
         "quit | help";
     return text;
 }
