@@ -433,7 +433,6 @@ SceneConfig shipped_saturn_scene(const std::string& dir) {
         nlohmann::json::parse(test::read_text(test::source_path("configs/scenes/solar-system.json")));
     nlohmann::json scene = {{"stars", shipped["stars"]}, {"bodies", nlohmann::json::array()}};
     scene["stars"]["catalog"] = test::source_path("data/stars/bright_stars.csv");
-    if (scene.contains("overlays")) scene["overlays"]["figures"] = test::source_path("data/sky/constellations.json");
     for (const auto& b : shipped["bodies"])
         if (b["name"] == "sun" || b["name"] == "saturn") scene["bodies"].push_back(b);
     test::write_text(dir + "/scene.json", scene.dump());

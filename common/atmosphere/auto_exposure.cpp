@@ -125,18 +125,17 @@ std::vector<double> AutoExposure::luminances(const Snapshot& snap, const std::ve
         const MoonOnAir moon =
             moon_on_air(second, snap.camera_position_m, st->position_m,
                         glm::normalize(sun_state->position_m - st->position_m), au_over_sun * au_over_sun, body->model);
-        // The night sky's own glow over the camera (shaders/shared/night_sky.glsl), scene units.
-        const double glow =
-            shading::night_sky_at_height(snap.settings.night_sky_cd_m2,
-                                         static_cast<float>(d - body->model.shader_params().bottom_radius_m)) *
-            sun.radiance / atmosphere::kPhysicalSunRadiance_cd_m2;
+        // The night sky's own glow (shaders/shared/night_sky.glsl): cd/m^2 to scene units.
+        const float height_m = static_cast<float>(d - body->model.shader_params().bottom_radius_m);
+        const double to_scene = sun.radiance / atmosphere::kPhysicalSunRadiance_cd_m2;
         for (size_t k = 0; k < rays.size(); ++k) {
             const glm::dvec3& v = rays[k].dir_world;
             const auto start = shading::atm_ray_start(body->model.shader_params(), static_cast<float>(d), glm::vec3(v),
                                                       glm::vec3(c_hat), glm::vec3(sun_dir));
-            if (glow > 0.0 && start.valid &&
+            if (snap.settings.night_sky_cd_m2 > 0.0f && start.valid &&
                 !shading::atm_ray_hits_ground(body->model.shader_params(), start.r_m, start.mu))
-                out[k] += glow * shading::night_sky_gradient(static_cast<float>(glm::dot(v, -c_hat)));
+                out[k] += to_scene * shading::night_sky_luminance(snap.settings.night_sky_cd_m2, height_m,
+                                                                  static_cast<float>(glm::dot(v, -c_hat)));
             const shading::EclipseRay shadow =
                 shading::eclipse_ray(casters, glm::vec2(1.0f),
                                      glm::vec3(-to_centre + v * static_cast<double>(start.offset_m)), glm::vec3(v));

@@ -69,8 +69,8 @@ double SceneAtmospheres::star_sky_weight(const Snapshot& snap, const glm::dvec3&
     const double sky = body->model.to_xyz(body->model.radiance(start, -1.0f, &tr)).y;  // cd/m^2 per unit irradiance
     const double to_cd_m2 = atmosphere::sky_to_cd_m2(atmosphere::solar_scale(body->model, *sun, d_sun), sun->radiance);
     const float glow_cd_m2 =
-        shading::night_sky_at_height(snap.settings.night_sky_cd_m2, static_cast<float>(d - a.bottom_radius_m)) *
-        shading::night_sky_gradient(static_cast<float>(glm::dot(direction, -to_centre / d)));
+        shading::night_sky_luminance(snap.settings.night_sky_cd_m2, static_cast<float>(d - a.bottom_radius_m),
+                                     static_cast<float>(glm::dot(direction, -to_centre / d)));
     return shading::star_sky_weight_over(glm::vec2(static_cast<float>(sky), shading::rec709_luminance(tr)),
                                          static_cast<float>(to_cd_m2), glow_cd_m2, static_cast<float>(v_mag));
 }

@@ -381,19 +381,21 @@ Image read_image(const std::string& path, FrameMetadata* meta) { return read_imp
 
 Image read_image_radiance(const std::string& path, FrameMetadata* meta) { return read_impl(path, meta, true); }
 
-// A NaN component counts as 0 (as in the EXR), the rest is mapped.
+namespace {
+// A NaN component counts as 0 (as in the EXR).
+glm::vec3 nan_as_zero(const glm::vec3& c) {
+    return {std::isnan(c.x) ? 0.0f : c.x, std::isnan(c.y) ? 0.0f : c.y, std::isnan(c.z) ? 0.0f : c.z};
+}
+}  // namespace
+
 glm::vec3 display_color(const glm::vec3& linear, double tone_white) {
-    const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
-                           std::isnan(linear.z) ? 0.0f : linear.z);
-    return shading::gamut_map_to_unit_cube(shading::tone_curve(finite, static_cast<float>(tone_white)));
+    return shading::gamut_map_to_unit_cube(shading::tone_curve(nan_as_zero(linear), static_cast<float>(tone_white)));
 }
 
 glm::vec3 display_color(const glm::vec3& linear, double tone_white, double exposure, double night_adapted_cd_m2) {
-    const glm::vec3 finite(std::isnan(linear.x) ? 0.0f : linear.x, std::isnan(linear.y) ? 0.0f : linear.y,
-                           std::isnan(linear.z) ? 0.0f : linear.z);
-    return display_color(
-        shading::night_vision(finite, static_cast<float>(exposure), static_cast<float>(night_adapted_cd_m2)),
-        tone_white);
+    return display_color(shading::night_vision(nan_as_zero(linear), static_cast<float>(exposure),
+                                               static_cast<float>(night_adapted_cd_m2)),
+                         tone_white);
 }
 
 float linear_to_srgb(float linear) {

@@ -1,13 +1,14 @@
 #include "overlay/overlay_frames.hpp"
 
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <limits>
 
 namespace cupola {
 
 namespace {
 
-constexpr double kObliquityJ2000_rad = 84381.406 / 3600.0 * 3.14159265358979323846 / 180.0;
+constexpr double kObliquityJ2000_rad = 84381.406 / 3600.0 * glm::pi<double>() / 180.0;
 
 // The nearest planet or moon whose surface is within one radius of the camera.
 const BodyState* ground_under(const Snapshot& snap, const SceneConfig& scene) {
@@ -61,12 +62,10 @@ OverlayFrames overlay_frames(const Snapshot& snap, const SceneConfig& scene) {
     const BodyState* ground = ground_under(snap, scene);
     if (!ground) return f;
     const glm::dvec3 zenith = glm::normalize(snap.camera_position_m - ground->position_m);
-    const glm::dvec3 axis = glm::mat3_cast(ground->orientation) * glm::dvec3(0.0, 0.0, 1.0);
-    glm::dvec3 north = axis - glm::dot(axis, zenith) * zenith;
-    if (glm::length(north) < 1e-9) {  // at a pole: any direction is south (or north); take the body's x
-        const glm::dvec3 x = glm::mat3_cast(ground->orientation) * glm::dvec3(1.0, 0.0, 0.0);
-        north = x - glm::dot(x, zenith) * zenith;
-    }
+    const glm::dmat3 body_to_world = glm::mat3_cast(ground->orientation);
+    glm::dvec3 north = body_to_world[2] - glm::dot(body_to_world[2], zenith) * zenith;  // toward the spin axis
+    if (glm::length(north) < 1e-9)  // at a pole: any direction is south (or north); take the body's x
+        north = body_to_world[0] - glm::dot(body_to_world[0], zenith) * zenith;
     north = glm::normalize(north);
     f.horizon = glm::dmat3(north, glm::cross(zenith, north), zenith);
     f.ground_body = ground->id;

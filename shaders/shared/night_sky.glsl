@@ -45,3 +45,8 @@ vec3 night_sky_rgb(float zenith_cd_m2) {
 float night_sky_at_height(float zenith_cd_m2, float height_m) {
     return zenith_cd_m2 * exp(-max(height_m, 0.0) / NIGHT_SKY_SCALE_HEIGHT_M);
 }
+
+// The glow (cd/m^2) a camera height_m above the ground sees in a direction of zenith cosine cos_z.
+float night_sky_luminance(float zenith_cd_m2, float height_m, float cos_z) {
+    return night_sky_at_height(zenith_cd_m2, height_m) * night_sky_gradient(cos_z);
+}

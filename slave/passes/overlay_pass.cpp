@@ -72,11 +72,6 @@ OverlayPass::OverlayPass(const SceneConfig& scene)
     build_labels(figures);
 }
 
-size_t OverlayPass::label_count(OverlayKind k) const {
-    return static_cast<size_t>(
-        std::count_if(labels_.begin(), labels_.end(), [&](const OverlayLabel& l) { return l.kind == k; }));
-}
-
 void OverlayPass::build_lines(const std::vector<ConstellationFigure>& figures) {
     const auto arcs = overlay_lines(figures);
     for (size_t k = 0; k < kOverlayCount; ++k) {
@@ -127,7 +122,7 @@ void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures) 
     upload_static_labels();
 }
 
-std::vector<float> OverlayPass::label_vertices(const OverlayLabel&, const LabelBox& b, const glm::dvec3& anchor) const {
+std::vector<float> OverlayPass::label_vertices(const LabelBox& b, const glm::dvec3& anchor) {
     std::vector<float> v;
     const auto vertex = [&](float x, float y, float u, float t) {
         v.insert(v.end(), {static_cast<float>(anchor.x), static_cast<float>(anchor.y), static_cast<float>(anchor.z), x,
@@ -143,7 +138,7 @@ void OverlayPass::upload_static_labels() {
     std::array<std::vector<float>, kOverlayCount> v;
     for (size_t i = 0; i < labels_.size(); ++i) {
         if (labels_[i].body) continue;
-        const auto q = label_vertices(labels_[i], boxes_[i], labels_[i].anchor);
+        const auto q = label_vertices(boxes_[i], labels_[i].anchor);
         auto& dst = v[static_cast<size_t>(labels_[i].kind)];
         dst.insert(dst.end(), q.begin(), q.end());
     }
@@ -163,7 +158,7 @@ void OverlayPass::update_body_labels() {
         if (!body || *body >= s.bodies.size() || (frames_.ground_body && *frames_.ground_body == *body)) continue;
         const glm::dvec3 to = s.bodies[*body].position_m - s.camera_position_m;
         if (!(glm::length(to) > 0.0)) continue;
-        const auto q = label_vertices(labels_[i], boxes_[i], glm::normalize(to));
+        const auto q = label_vertices(boxes_[i], glm::normalize(to));
         v.insert(v.end(), q.begin(), q.end());
     }
     body_labels_.upload(v);
@@ -192,7 +187,8 @@ void OverlayPass::draw(const PassInputs&, int) {
         p->use();
         p->set("u_projection", projection);
     }
-    update_body_labels();
+    const bool body_labels = frame_->snap->settings.overlay_alpha[static_cast<size_t>(OverlayKind::Labels)] > 0.0f;
+    if (body_labels) update_body_labels();  // only in frames that show them
     for (size_t k = 0; k < kOverlayCount; ++k) {
         if (frame_->snap->settings.overlay_alpha[k] <= 0.0f) continue;
         const auto frame_to_world = frames_.to_world(overlay_frame_of(static_cast<OverlayKind>(k)));

@@ -34,9 +34,8 @@ public:
     int prepare(const FrameContext& frame) override;
     void draw(const PassInputs& in, int step) override;
 
-    // Line arcs and labels each overlay holds (tests).
+    // Line arcs each overlay holds (tests).
     size_t arc_count(OverlayKind k) const { return arcs_[static_cast<size_t>(k)]; }
-    size_t label_count(OverlayKind k) const;
     // Arcs given to the GPU since the pass was made: only the runs that can touch the channel.
     long arcs_drawn() const { return arcs_drawn_; }
 
@@ -52,7 +51,7 @@ private:
     void draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const;
     void draw_labels(const GlVertexBuffer& vb, const glm::mat3& to_channel, const glm::vec4& color) const;
     glm::vec4 color_of(size_t k) const;
-    std::vector<float> label_vertices(const OverlayLabel& l, const LabelBox& box, const glm::dvec3& anchor) const;
+    static std::vector<float> label_vertices(const LabelBox& box, const glm::dvec3& anchor);
 
     const SceneConfig* scene_;
     GlProgram line_program_, label_program_;
