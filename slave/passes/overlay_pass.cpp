@@ -207,8 +207,10 @@ void OverlayPass::draw_lines(size_t k, const glm::mat3& to_channel, const glm::v
     line_program_.use();
     line_program_.set("u_to_channel", to_channel);
     line_program_.set("u_half_width_rad", static_cast<float>(0.5 * glm::radians(scene_->overlays.styles[k].width_deg)));
-    // The ramp's half pixel (at the widest pixel), and the chord's sag below an arc of the longest step.
-    line_program_.set("u_margin_rad", 0.5f * pixel_rad_ + 1.6e-4f);
+    // Room for the ramp, which reaches half of fwidth(s) past the edge: fwidth is |ds/dx| + |ds/dy|, up
+    // to sqrt(2) pixels' angle for a diagonal line (at the widest pixel); and the chord's sag below
+    // an arc of the longest step.
+    line_program_.set("u_margin_rad", 0.75f * pixel_rad_ + 1.6e-4f);
     line_program_.set("u_color", color);
     offsets_.clear();
     counts_.clear();
