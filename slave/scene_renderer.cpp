@@ -85,8 +85,10 @@ struct SceneRenderer::Impl {
             milky_way =
                 &add(std::make_unique<MilkyWayPass>(scene.milky_way, scene.stars.zero_mag_flux, coarsest_pixel_rad));
         // Stars: colour, additive.
-        stars = &add(std::make_unique<StarPass>(scene.stars,
-                                                load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit)));
+        std::vector<Star> catalog = load_star_catalog(scene.stars.catalog, scene.stars.magnitude_limit);
+        // The overlays' star names come from the same catalogue, read once.
+        const std::vector<Star> overlay_stars = scene.overlays.present ? catalog : std::vector<Star>{};
+        stars = &add(std::make_unique<StarPass>(scene.stars, std::move(catalog)));
         // The Sun and the bodies, far to near: colour and G-buffer.
         painter = &add(std::make_unique<PainterPass>(scene, shadows));
         // The bodies too small for their disc alone: colour, additive, after the discs.
@@ -119,7 +121,7 @@ struct SceneRenderer::Impl {
         // The glare, last, from the cluster-wide visibility: colour, additive.
         if (scene.glare.enabled) add(std::make_unique<GlarePass>(scene, *glare_probe, halo));
         // The presenter's overlays, over everything: colour, blended.
-        if (scene.overlays.present) overlays = &add(std::make_unique<OverlayPass>(scene));
+        if (scene.overlays.present) overlays = &add(std::make_unique<OverlayPass>(scene, overlay_stars));
         // The alignment pattern, when the snapshot asks for one: replaces the colour of the passes
         // above, which are then skipped (render()); the passes after it (the output) draw it.
         pattern = &add(std::make_unique<PatternPass>(cluster, ch));

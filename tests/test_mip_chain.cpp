@@ -43,7 +43,7 @@ TEST(MipChain, EvenLevelsAreTheMeanOfEachTwoByTwoBlock) {
                 auto at = [&](int xx, int yy) { return rgb[(static_cast<size_t>(yy) * w + xx) * 3 + c]; };
                 const float want =
                     0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1));
-                EXPECT_FLOAT_EQ(chain[0].rgb[(static_cast<size_t>(y) * 4 + x) * 3 + c], want);
+                EXPECT_FLOAT_EQ(chain[0].texels[(static_cast<size_t>(y) * 4 + x) * 3 + c], want);
             }
     EXPECT_EQ(chain[2].width, 1);
     EXPECT_EQ(chain[2].height, 1);
@@ -61,7 +61,7 @@ TEST(MipChain, EveryLevelOfAnOddSizedImageCarriesTheSameLight) {
     EXPECT_EQ(chain[1].height, 1);
     for (int c = 0; c < 3; ++c) {
         const double want = light(rgb, w, h, c, w, h);
-        for (const auto& l : chain) EXPECT_NEAR(light(l.rgb, l.width, l.height, c, w, h), want, 1e-5 * want);
+        for (const auto& l : chain) EXPECT_NEAR(light(l.texels, l.width, l.height, c, w, h), want, 1e-5 * want);
     }
 }
 
@@ -69,7 +69,7 @@ TEST(MipChain, AUniformImageStaysUniformAtEveryLevel) {
     const int w = 11, h = 6;
     const std::vector<float> rgb(static_cast<size_t>(w) * h * 3, 0.37f);
     for (const auto& l : box_filter_mip_chain(w, h, rgb))
-        for (float v : l.rgb) EXPECT_NEAR(v, 0.37f, 1e-6f);
+        for (float v : l.texels) EXPECT_NEAR(v, 0.37f, 1e-6f);
 }
 
 TEST(MipChain, AOneTexelImageHasNoFurtherLevel) { EXPECT_TRUE(box_filter_mip_chain(1, 1, {0.1f, 0.2f, 0.3f}).empty()); }
@@ -90,4 +90,29 @@ TEST(MipChain, BadInputIsNamed) {
     }
     EXPECT_THROW(box_filter_mip_chain(0, 4, {}), std::invalid_argument);
     EXPECT_THROW(box_filter_mip_chain(-2, 4, {}), std::invalid_argument);
+}
+
+TEST(MipChain, OneChannelCoverageKeepsItsMeanAndMatchesTheRgbChainsRed) {
+    // A glyph atlas has one channel: its chain is the RGB chain's red, texel for texel.
+    const int w = 13, h = 6;
+    const auto rgb = random_image(w, h, 4);
+    std::vector<float> red(static_cast<size_t>(w) * h);
+    for (size_t i = 0; i < red.size(); ++i) red[i] = rgb[3 * i];
+    const auto grey = box_filter_mip_chain(w, h, red, 1);
+    const auto colour = box_filter_mip_chain(w, h, rgb);
+    ASSERT_EQ(grey.size(), colour.size());
+    for (size_t l = 0; l < grey.size(); ++l) {
+        EXPECT_EQ(grey[l].channels, 1);
+        ASSERT_EQ(grey[l].texels.size() * 3, colour[l].texels.size()) << "level " << l + 1;
+        for (size_t i = 0; i < grey[l].texels.size(); ++i)
+            EXPECT_FLOAT_EQ(grey[l].texels[i], colour[l].texels[3 * i]) << "level " << l + 1 << " texel " << i;
+    }
+    try {
+        box_filter_mip_chain(4, 4, std::vector<float>(15), 1);
+        FAIL() << "a short coverage image was taken";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("4x4 1-channel image needs 16 floats, got 15"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(box_filter_mip_chain(2, 2, std::vector<float>(20), 5), std::invalid_argument);
 }

@@ -104,8 +104,11 @@ TEST(OverlayData, CullingKeepsEveryRunThatCanTouchTheChannel) {
     for (const ArcChunk& c : chunks) {
         const bool touches = cone_touches_frustum(to_channel * c.centre, c.radius_rad, t);
         kept += touches ? 1 : 0;
-        for (int i = c.first_arc; i < c.first_arc + c.arc_count; ++i)
-            if (f.contains(grid[i].a) || f.contains(grid[i].b)) ASSERT_TRUE(touches) << "arc " << i;
+        for (int i = c.first_arc; i < c.first_arc + c.arc_count; ++i) {
+            if (f.contains(grid[i].a) || f.contains(grid[i].b)) {
+                ASSERT_TRUE(touches) << "arc " << i;
+            }
+        }
     }
     std::printf("equatorial grid: %zu of %zu runs kept for a 60 degree channel\n", kept, chunks.size());
     EXPECT_LT(kept, chunks.size() / 4);

@@ -3,7 +3,6 @@
 #include <cctype>
 
 #include "overlay/sky_arcs.hpp"
-#include "scene/star_catalog.hpp"
 
 namespace cupola {
 
@@ -25,7 +24,8 @@ bool proper_name(const std::string& name) {
 
 }  // namespace
 
-std::vector<OverlayLabel> overlay_labels(const std::vector<ConstellationFigure>& figures, const SceneConfig& scene) {
+std::vector<OverlayLabel> overlay_labels(const std::vector<ConstellationFigure>& figures, const SceneConfig& scene,
+                                         const std::vector<Star>& stars) {
     std::vector<OverlayLabel> out;
     for (const auto& f : figures)
         for (const auto& l : f.labels) out.push_back({OverlayKind::ConstellationNames, l.text, l.dir});
@@ -34,8 +34,9 @@ std::vector<OverlayLabel> overlay_labels(const std::vector<ConstellationFigure>&
     for (int k = 0; k < 4; ++k)
         out.push_back({OverlayKind::Cardinals, cardinal[k],
                        frame_dir(-glm::radians(90.0 * k), glm::radians(kCardinalAltitude_deg))});
-    for (const Star& s : load_star_catalog(scene.stars.catalog, kNamedStarLimit))
-        if (proper_name(s.name)) out.push_back({OverlayKind::Labels, s.name, s.direction(), LabelPlacement::Beside});
+    for (const Star& s : stars)
+        if (s.v_mag <= kNamedStarLimit && proper_name(s.name))
+            out.push_back({OverlayKind::Labels, s.name, s.direction(), LabelPlacement::Beside});
     for (const BodyConfig& b : scene.bodies)
         out.push_back(
             {OverlayKind::Labels, capitalised(b.name), glm::dvec3(0.0, 0.0, 1.0), LabelPlacement::Beside, b.id});

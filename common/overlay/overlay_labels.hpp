@@ -13,6 +13,7 @@
 #include "config/scene_config.hpp"
 #include "overlay/constellation_figures.hpp"
 #include "overlay/overlay_kind.hpp"
+#include "scene/star_catalog.hpp"
 
 namespace cupola {
 
@@ -29,6 +30,8 @@ struct OverlayLabel {
     std::optional<uint16_t> body;  // a scene body: anchored at it every frame
 };
 
-std::vector<OverlayLabel> overlay_labels(const std::vector<ConstellationFigure>& figures, const SceneConfig& scene);
+// stars: the scene's catalogue (those of V <= 1.6 with a proper name are labelled).
+std::vector<OverlayLabel> overlay_labels(const std::vector<ConstellationFigure>& figures, const SceneConfig& scene,
+                                         const std::vector<Star>& stars);
 
 }  // namespace cupola

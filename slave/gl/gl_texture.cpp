@@ -45,7 +45,7 @@ GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const
                                     std::to_string(mips.size()) + " mipmap levels given, " +
                                     std::to_string(levels - 1) + " needed");
     for (size_t i = 0; i < mips.size(); ++i)
-        upload_level(id_, static_cast<GLint>(i + 1), mips[i].width, mips[i].height, mips[i].rgb, grey);
+        upload_level(id_, static_cast<GLint>(i + 1), mips[i].width, mips[i].height, mips[i].texels, grey);
     if (grey) {
         glTextureParameteri(id_, GL_TEXTURE_SWIZZLE_G, GL_RED);
         glTextureParameteri(id_, GL_TEXTURE_SWIZZLE_B, GL_RED);
@@ -70,6 +70,32 @@ GlTexture::GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter
     glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl::check("RGBA32F texture " + std::to_string(width) + "x" + std::to_string(height));
+}
+
+GlTexture::GlTexture(int width, int height, const std::vector<std::vector<uint8_t>>& levels)
+    : width_(width), height_(height) {
+    check_size(width, height);
+    int count = 1;
+    while ((std::max(width, height) >> count) > 0) ++count;
+    if (static_cast<int>(levels.size()) != count)
+        throw std::invalid_argument("coverage texture " + std::to_string(width) + "x" + std::to_string(height) + ": " +
+                                    std::to_string(levels.size()) + " levels given, " + std::to_string(count) +
+                                    " needed");
+    glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+    glTextureStorage2D(id_, count, GL_R8, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int l = 0, w = width, h = height; l < count; ++l, w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        if (levels[static_cast<size_t>(l)].size() != static_cast<size_t>(w) * h)
+            throw std::invalid_argument("coverage texture level " + std::to_string(l) + ": " +
+                                        std::to_string(levels[static_cast<size_t>(l)].size()) + " values for " +
+                                        std::to_string(w) + "x" + std::to_string(h));
+        glTextureSubImage2D(id_, l, 0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, levels[static_cast<size_t>(l)].data());
+    }
+    glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::check("coverage texture " + std::to_string(width) + "x" + std::to_string(height));
 }
 
 GlTexture::~GlTexture() { glDeleteTextures(1, &id_); }

@@ -7,6 +7,7 @@
 //    filtering, one level (sampled with textureLod / texelFetch).
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "gl/gl_api.hpp"
@@ -25,6 +26,10 @@ public:
               Channels channels = Channels::Rgb);
     // RGBA32F; rgba: width*height texels, row 0 first, or nullptr for an uninitialised render target.
     GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter);
+    // 8-bit coverage (a glyph atlas): R8, read back as r, trilinear filtering, clamped to the edge.
+    // levels: the full chain, level 0 (width*height values, row 0 first) down to 1x1, each level
+    // max(1, n / 2) of the one before (std::invalid_argument when a level is missing or mis-sized).
+    GlTexture(int width, int height, const std::vector<std::vector<uint8_t>>& levels);
     ~GlTexture();
     GlTexture(const GlTexture&) = delete;
     GlTexture& operator=(const GlTexture&) = delete;

@@ -60,16 +60,30 @@ struct Shelf {
     }
 };
 
+// The atlas's full mipmap chain, level 0 first, in 8 bits: built on the CPU (image/mip_chain.hpp
+// says why), a tenth of what glGenerateTextureMipmap costs on llvmpipe.
+std::vector<std::vector<uint8_t>> coverage_levels(int width, int height, const std::vector<float>& coverage) {
+    const auto unorm8 = [](const std::vector<float>& v) {
+        std::vector<uint8_t> out(v.size());
+        for (size_t i = 0; i < v.size(); ++i)
+            out[i] = static_cast<uint8_t>(std::lround(std::clamp(v[i], 0.0f, 1.0f) * 255.0f));
+        return out;
+    };
+    std::vector<std::vector<uint8_t>> levels{unorm8(coverage)};
+    for (const MipLevel& l : box_filter_mip_chain(width, height, coverage, 1)) levels.push_back(unorm8(l.texels));
+    return levels;
+}
+
 }  // namespace
 
-OverlayPass::OverlayPass(const SceneConfig& scene)
+OverlayPass::OverlayPass(const SceneConfig& scene, const std::vector<Star>& stars)
     : scene_(&scene),
       line_program_("overlay_line.vert", "overlay_line.frag"),
       label_program_("overlay_label.vert", "overlay_label.frag"),
       body_labels_({3, 2, 2}) {
     const std::vector<ConstellationFigure> figures = load_constellation_figures(scene.overlays.figures);
     build_lines(figures);
-    build_labels(figures);
+    build_labels(figures, stars);
 }
 
 void OverlayPass::build_lines(const std::vector<ConstellationFigure>& figures) {
@@ -88,24 +102,23 @@ void OverlayPass::build_lines(const std::vector<ConstellationFigure>& figures) {
 
 // Every label rasterized once (FreeType) into one atlas; each gets its quad in em units of its
 // overlay's text size.
-void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures) {
-    labels_ = overlay_labels(figures, *scene_);
+void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures, const std::vector<Star>& stars) {
+    labels_ = overlay_labels(figures, *scene_, stars);
+    const TextFace face(kAtlasPx);
     std::vector<TextRaster> rasters;
     std::vector<glm::ivec2> at;
     Shelf shelf;
     for (const OverlayLabel& l : labels_) {
-        rasters.push_back(rasterize_text(l.text, kAtlasPx));
+        rasters.push_back(face.raster(l.text));
         at.push_back(shelf.place(rasters.back().width, rasters.back().height));
     }
     const int height = std::max(1, shelf.y + shelf.row_height + kAtlasPad);
-    std::vector<float> texels(static_cast<size_t>(kAtlasWidth) * height * 3, 0.0f);
+    std::vector<float> texels(static_cast<size_t>(kAtlasWidth) * height, 0.0f);
     for (size_t i = 0; i < labels_.size(); ++i) {
         const TextRaster& r = rasters[i];
         for (int y = 0; y < r.height; ++y)
-            for (int x = 0; x < r.width; ++x) {
-                const size_t t = (static_cast<size_t>(at[i].y + y) * kAtlasWidth + at[i].x + x) * 3;
-                texels[t] = texels[t + 1] = texels[t + 2] = r.at(x, y);
-            }
+            for (int x = 0; x < r.width; ++x)
+                texels[static_cast<size_t>(at[i].y + y) * kAtlasWidth + at[i].x + x] = r.at(x, y);
         const double em = glm::radians(scene_->overlays.styles[static_cast<size_t>(labels_[i].kind)].text_deg);
         const float w = static_cast<float>(em * r.width / kAtlasPx), h = static_cast<float>(em * r.height / kAtlasPx);
         const float x0 =
@@ -117,8 +130,7 @@ void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures) 
                            static_cast<float>(at[i].x + r.width) / kAtlasWidth, static_cast<float>(at[i].y) / height);
         boxes_.push_back(box);
     }
-    atlas_ = std::make_unique<GlTexture>(kAtlasWidth, height, texels, box_filter_mip_chain(kAtlasWidth, height, texels),
-                                         GlTexture::Channels::Grey);
+    atlas_ = std::make_unique<GlTexture>(kAtlasWidth, height, coverage_levels(kAtlasWidth, height, texels));
     upload_static_labels();
 }
 

@@ -26,8 +26,8 @@ namespace cupola {
 class OverlayPass : public RenderPass {
 public:
     // Reads the scene's constellation data (throws std::runtime_error naming the file and field)
-    // and rasterizes every label once.
-    explicit OverlayPass(const SceneConfig& scene);
+    // and rasterizes every label once; `stars`: the scene's catalogue (the named stars' labels).
+    OverlayPass(const SceneConfig& scene, const std::vector<Star>& stars);
 
     std::string name() const override { return "overlays"; }
     PassIo io() const override { return {.writes_color = true}; }
@@ -45,7 +45,7 @@ private:
         glm::vec4 uv{0.0f};       // u0, v0 (bottom), u1, v1 (top)
     };
     void build_lines(const std::vector<ConstellationFigure>& figures);
-    void build_labels(const std::vector<ConstellationFigure>& figures);
+    void build_labels(const std::vector<ConstellationFigure>& figures, const std::vector<Star>& stars);
     void upload_static_labels();
     void update_body_labels();
     void draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const;

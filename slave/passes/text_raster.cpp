@@ -17,22 +17,31 @@ std::string freetype_failure(const std::string& what, const std::string& font_fi
            "): " + (text ? std::string(text) : "FreeType error " + std::to_string(error));
 }
 
-struct FaceHandle {
+}  // namespace
+
+// The library and the face, opened at a pixel size (released in reverse order).
+struct TextFace::Handle {
     FT_Library library = nullptr;
     FT_Face face = nullptr;
-    ~FaceHandle() {
-        if (face) FT_Done_Face(face);
-        if (library) FT_Done_FreeType(library);
+    Handle(const std::string& font_file, int pixel_size) {
+        if (FT_Error e = FT_Init_FreeType(&library)) throw std::runtime_error(freetype_failure("init", font_file, e));
+        if (FT_Error e = FT_New_Face(library, font_file.c_str(), 0, &face)) {
+            FT_Done_FreeType(library);
+            throw std::runtime_error(freetype_failure("cannot open the face", font_file, e));
+        }
+        if (FT_Error e = FT_Set_Pixel_Sizes(face, 0, static_cast<FT_UInt>(pixel_size))) {
+            FT_Done_Face(face);
+            FT_Done_FreeType(library);
+            throw std::runtime_error(freetype_failure("cannot set the pixel size", font_file, e));
+        }
+    }
+    ~Handle() {
+        FT_Done_Face(face);
+        FT_Done_FreeType(library);
     }
 };
 
-void open_face(FaceHandle& h, const std::string& font_file, int pixel_size) {
-    if (FT_Error e = FT_Init_FreeType(&h.library)) throw std::runtime_error(freetype_failure("init", font_file, e));
-    if (FT_Error e = FT_New_Face(h.library, font_file.c_str(), 0, &h.face))
-        throw std::runtime_error(freetype_failure("cannot open the face", font_file, e));
-    if (FT_Error e = FT_Set_Pixel_Sizes(h.face, 0, static_cast<FT_UInt>(pixel_size)))
-        throw std::runtime_error(freetype_failure("cannot set the pixel size", font_file, e));
-}
+namespace {
 
 char printable(char c) { return c >= 0x20 && c < 0x7f ? c : '?'; }
 
@@ -59,11 +68,26 @@ void blit_glyph(const FT_GlyphSlot g, int left, int top, TextRaster& out) {
 
 }  // namespace
 
-TextRaster rasterize_text(const std::string& text, int pixel_size, const std::string& font_file) {
+namespace {
+int checked_pixel_size(int pixel_size) {
     if (pixel_size < 4 || pixel_size > 512)
         throw std::invalid_argument("text raster: pixel size " + std::to_string(pixel_size) + " is not in 4..512");
-    FaceHandle h;
-    open_face(h, font_file, pixel_size);
+    return pixel_size;
+}
+}  // namespace
+
+TextFace::TextFace(int pixel_size, const std::string& font_file)
+    : h_(std::make_unique<Handle>(font_file, checked_pixel_size(pixel_size))), font_file_(font_file) {}
+
+TextFace::~TextFace() = default;
+
+TextRaster rasterize_text(const std::string& text, int pixel_size, const std::string& font_file) {
+    return TextFace(pixel_size, font_file).raster(text);
+}
+
+TextRaster TextFace::raster(const std::string& text) const {
+    const std::string& font_file = font_file_;
+    const Handle& h = *h_;
     const FT_Size_Metrics& m = h.face->size->metrics;
     const int ascender = static_cast<int>(m.ascender >> 6), descender = static_cast<int>(m.descender >> 6);
     // The advance of every glyph gives the width; a margin of one pixel on each side.

@@ -3,6 +3,7 @@
 // FT_Set_Pixel_Sizes, FT_Load_Char with FT_LOAD_RENDER, the glyph metrics in 26.6 fixed point;
 // docs/REFERENCES.md): the glyphs' 8-bit coverage placed along one baseline. Done once at
 // start-up (the alignment pattern's channel label, slave/passes/pattern_pass.hpp).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,9 +19,26 @@ struct TextRaster {
     float at(int x, int y) const { return coverage[static_cast<size_t>(y) * width + x]; }
 };
 
-// The text (ASCII; other bytes are drawn as '?') in the font file at a pixel size (the em
-// height, 4..512). Throws std::runtime_error naming the font file and FreeType's error when the
-// face cannot be opened or a glyph cannot be rendered.
+// A face opened once at one pixel size (the em height, 4..512), for rasterizing many texts: opening
+// the face is most of the cost of a short text. Throws std::runtime_error naming the font file and
+// FreeType's error when the face cannot be opened, std::invalid_argument for the size.
+class TextFace {
+public:
+    TextFace(int pixel_size, const std::string& font_file = kDefaultFontFile);
+    ~TextFace();
+    TextFace(const TextFace&) = delete;
+    TextFace& operator=(const TextFace&) = delete;
+    // The text (ASCII; other bytes are drawn as '?'); throws std::runtime_error when a glyph
+    // cannot be rendered.
+    TextRaster raster(const std::string& text) const;
+
+private:
+    struct Handle;
+    std::unique_ptr<Handle> h_;
+    std::string font_file_;
+};
+
+// One text with a face of its own.
 TextRaster rasterize_text(const std::string& text, int pixel_size, const std::string& font_file = kDefaultFontFile);
 
 }  // namespace cupola
