@@ -361,6 +361,30 @@ TEST(AlignmentPatternRender, LabelIsDrawnAndDiffersBetweenChannels) {
     EXPECT_THROW(rasterize_text("x", 16, "/nonexistent/font.ttf"), std::runtime_error);
 }
 
+// Star and constellation names are UTF-8 ("Boötes"): each character is one glyph, and bytes that
+// are not well-formed UTF-8 are drawn as '?', one for each byte.
+TEST(TextRaster, Utf8IsDecodedAndMalformedBytesAreQuestionMarks) {
+    const TextFace face(24);
+    const TextRaster umlaut = face.raster("Bo\xC3\xB6tes"), plain = face.raster("Bootes");
+    const TextRaster two_bytes = face.raster("Bo??tes");
+    // The diaeresis over the o: same advance as the o (one glyph, not two), different pixels.
+    EXPECT_EQ(umlaut.width, plain.width);
+    EXPECT_NE(umlaut.coverage, plain.coverage);
+    EXPECT_LT(umlaut.width, two_bytes.width);
+    // Its ink lies above the o's: rows above the x-height that "Bootes" leaves empty there.
+    float above = 0.0f;
+    for (int y = 0; y < umlaut.height / 3; ++y)
+        for (int x = 0; x < umlaut.width; ++x) above += std::max(0.0f, umlaut.at(x, y) - plain.at(x, y));
+    EXPECT_GT(above, 2.0f);
+    // A stray continuation byte, a lead byte cut short, an overlong '/' and a surrogate: '?' per byte.
+    const std::string stray = std::string("a\x80") + "b";
+    EXPECT_EQ(face.raster(stray).coverage, face.raster("a?b").coverage);
+    EXPECT_EQ(face.raster("a\xC3").coverage, face.raster("a?").coverage);
+    EXPECT_EQ(face.raster("\xC0\xAF").coverage, face.raster("??").coverage);
+    EXPECT_EQ(face.raster("\xED\xA0\x80").coverage, face.raster("???").coverage);
+    EXPECT_EQ(face.raster("tab\there").coverage, face.raster("tab?here").coverage);
+}
+
 TEST(AlignmentPatternRender, OverlapIsTintedExactlyWhereTheOtherChannelCovers) {
     const Cluster c;
     const Rendered r = render(c, 0, AlignmentPattern::Grid);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <cstdio>
 #include <stdexcept>
 
 namespace cupola {
@@ -43,11 +44,39 @@ struct TextFace::Handle {
 
 namespace {
 
-char printable(char c) { return c >= 0x20 && c < 0x7f ? c : '?'; }
+// The length of the UTF-8 sequence a lead byte starts (0: not a lead byte), and its payload bits.
+int sequence_length(unsigned char b) {
+    if (b < 0x80) return 1;
+    if ((b & 0xE0) == 0xC0) return 2;
+    if ((b & 0xF0) == 0xE0) return 3;
+    if ((b & 0xF8) == 0xF0) return 4;
+    return 0;
+}
 
-void load_glyph(FT_Face face, char c, const std::string& font_file) {
-    if (FT_Error e = FT_Load_Char(face, static_cast<unsigned char>(printable(c)), FT_LOAD_RENDER))
-        throw std::runtime_error(freetype_failure(std::string("cannot render '") + printable(c) + "'", font_file, e));
+// One code point from text at i (advancing i): a well-formed, shortest UTF-8 sequence of a scalar
+// value (RFC 3629 section 3), else '?' for its first byte. Control characters are '?' too.
+char32_t next_code_point(const std::string& text, size_t& i) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const int n = sequence_length(lead);
+    if (n == 0 || i + static_cast<size_t>(n) > text.size()) return ++i, U'?';
+    char32_t cp = n == 1 ? lead : lead & (0x7F >> n);
+    for (int k = 1; k < n; ++k) {
+        const auto b = static_cast<unsigned char>(text[i + static_cast<size_t>(k)]);
+        if ((b & 0xC0) != 0x80) return ++i, U'?';
+        cp = (cp << 6) | (b & 0x3F);
+    }
+    static constexpr char32_t kShortest[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < kShortest[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return ++i, U'?';
+    i += static_cast<size_t>(n);
+    return cp < 0x20 || cp == 0x7F ? U'?' : cp;
+}
+
+void load_glyph(FT_Face face, char32_t cp, const std::string& font_file) {
+    if (FT_Error e = FT_Load_Char(face, cp, FT_LOAD_RENDER)) {
+        char name[16];
+        std::snprintf(name, sizeof name, "U+%04X", static_cast<unsigned>(cp));
+        throw std::runtime_error(freetype_failure(std::string("cannot render ") + name, font_file, e));
+    }
 }
 
 // The glyph just loaded, its bitmap's top-left at (left, top) of the raster, clipped to it.
@@ -90,9 +119,11 @@ TextRaster TextFace::raster(const std::string& text) const {
     const Handle& h = *h_;
     const FT_Size_Metrics& m = h.face->size->metrics;
     const int ascender = static_cast<int>(m.ascender >> 6), descender = static_cast<int>(m.descender >> 6);
+    std::vector<char32_t> code_points;
+    for (size_t i = 0; i < text.size();) code_points.push_back(next_code_point(text, i));
     // The advance of every glyph gives the width; a margin of one pixel on each side.
     long pen_26_6 = 0;
-    for (char c : text) {
+    for (char32_t c : code_points) {
         load_glyph(h.face, c, font_file);
         pen_26_6 += h.face->glyph->advance.x;
     }
@@ -101,7 +132,7 @@ TextRaster TextFace::raster(const std::string& text) const {
     out.height = std::max(1, ascender - descender);
     out.coverage.assign(static_cast<size_t>(out.width) * out.height, 0.0f);
     long pen = 64;  // 26.6: one pixel of margin
-    for (char c : text) {
+    for (char32_t c : code_points) {
         load_glyph(h.face, c, font_file);
         const FT_GlyphSlot g = h.face->glyph;
         blit_glyph(g, static_cast<int>(pen >> 6) + g->bitmap_left, ascender - g->bitmap_top, out);

@@ -1,8 +1,9 @@
 #pragma once
 // A line of text rasterized on the CPU with FreeType (FreeType tutorial, steps 1 and 2:
 // FT_Set_Pixel_Sizes, FT_Load_Char with FT_LOAD_RENDER, the glyph metrics in 26.6 fixed point;
-// docs/REFERENCES.md): the glyphs' 8-bit coverage placed along one baseline. Done once at
-// start-up (the alignment pattern's channel label, slave/passes/pattern_pass.hpp).
+// docs/REFERENCES.md): the glyphs' 8-bit coverage placed along one baseline, one glyph per UTF-8
+// character. Done once at start-up (the alignment pattern's channel label,
+// slave/passes/pattern_pass.hpp; the overlays' label atlas, slave/passes/overlay_pass.hpp).
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,8 +29,9 @@ public:
     ~TextFace();
     TextFace(const TextFace&) = delete;
     TextFace& operator=(const TextFace&) = delete;
-    // The text (ASCII; other bytes are drawn as '?'); throws std::runtime_error when a glyph
-    // cannot be rendered.
+    // The text in UTF-8 (a byte that does not begin a well-formed sequence, and a control
+    // character, is drawn as '?'; a character the font lacks as its missing-glyph box); throws
+    // std::runtime_error when a glyph cannot be rendered.
     TextRaster raster(const std::string& text) const;
 
 private:
