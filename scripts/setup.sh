@@ -28,6 +28,7 @@ PACKAGES=(
   clang libclang-rt-14-dev                     # libFuzzer + ASan/UBSan runtimes for fuzz/ (clang++ only)
   dpkg-dev file systemd                        # the .deb: cpack's dpkg-shlibdeps and file; its units and user checked offline (ctest packaging_*)
   libfreetype-dev fonts-dejavu-core            # alignment pattern: channel labels (FreeType, DejaVu Sans)
+  libgdal-dev                                  # terrain elevation: GeoTIFF and the rasters GDAL reads
 )
 
 missing=()

@@ -1,0 +1,56 @@
+#include "terrain/cluster_cut_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cupola::terrain {
+
+namespace {
+
+ChannelCone channel_cone(const ChannelFrustum& f, const glm::dmat3& body_from_dome) {
+    return {glm::transpose(body_from_dome * f.rotation()),
+            glm::dvec4(f.tan_left(), f.tan_right(), f.tan_down(), f.tan_up())};
+}
+
+glm::dmat3 body_from_dome(const ClusterConfig& cluster, const glm::dmat3& body_from_world,
+                          const glm::dquat& camera_orientation) {
+    return body_from_world * glm::mat3_cast(camera_orientation) * dome_tilt_rotation(cluster.dome.tilt_deg);
+}
+
+}  // namespace
+
+double finest_pixel_rad(const ChannelFrustum& f) {
+    const double w = f.width(), h = f.height();
+    double finest = 1e9;
+    for (const glm::dvec2 p : {glm::dvec2(0.5, 0.5), glm::dvec2(w - 0.5, 0.5), glm::dvec2(0.5, h - 0.5),
+                               glm::dvec2(w - 0.5, h - 0.5), glm::dvec2(0.5 * w, 0.5 * h)})
+        finest = std::min(finest, std::sqrt(f.pixel_solid_angle(p)));
+    return finest;
+}
+
+CutView cut_view_for_cluster(const ClusterConfig& cluster, const glm::dvec3& camera_body_m,
+                             const glm::dmat3& body_from_world, const glm::dquat& camera_orientation) {
+    CutView v;
+    v.camera_m = camera_body_m;
+    const glm::dmat3 to_body = body_from_dome(cluster, body_from_world, camera_orientation);
+    v.pixel_rad = 1e9;
+    for (const ChannelConfig& ch : cluster.channels) {
+        const ChannelFrustum f = ch.frustum();
+        v.channels.push_back(channel_cone(f, to_body));
+        v.pixel_rad = std::min(v.pixel_rad, finest_pixel_rad(f));
+    }
+    return v;
+}
+
+CutView cut_view_for_channel(const ClusterConfig& cluster, const ChannelConfig& channel,
+                             const glm::dvec3& camera_body_m, const glm::dmat3& body_from_world,
+                             const glm::dquat& camera_orientation) {
+    CutView v;
+    v.camera_m = camera_body_m;
+    const ChannelFrustum f = channel.frustum();
+    v.channels.push_back(channel_cone(f, body_from_dome(cluster, body_from_world, camera_orientation)));
+    v.pixel_rad = finest_pixel_rad(f);
+    return v;
+}
+
+}  // namespace cupola::terrain

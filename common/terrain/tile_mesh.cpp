@@ -1,0 +1,125 @@
+#include "terrain/tile_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "terrain/terrain_cut.hpp"
+
+namespace cupola::terrain {
+
+namespace {
+
+// The parent's shape at the grid points: the even ones are its vertices (at its spacing); an odd
+// one lies on its edge between two of them, or in its quad on the diagonal between two (the
+// parent splits its quads along the same diagonal).
+void fill_parent_heights(TileMesh& m, const Relief& relief, double parent_spacing_m) {
+    const int n = m.segments;
+    m.parent_height_m.assign(m.height_m.size(), 0.0);
+    for (int j = 0; j <= n; j += 2)
+        for (int i = 0; i <= n; i += 2)
+            m.parent_height_m[m.index(i, j)] = relief.height_m(m.directions[m.index(i, j)], parent_spacing_m);
+    const auto at = [&](int i, int j) { return m.parent_height_m[m.index(i, j)]; };
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const bool odd_i = i % 2, odd_j = j % 2;
+            if (!odd_i && !odd_j) continue;
+            double h;
+            if (odd_i && odd_j)
+                h = 0.5 * (at(i - 1, j - 1) + at(i + 1, j + 1));
+            else if (odd_i)
+                h = 0.5 * (at(i - 1, j) + at(i + 1, j));
+            else
+                h = 0.5 * (at(i, j - 1) + at(i, j + 1));
+            m.parent_height_m[m.index(i, j)] = h;
+        }
+}
+
+// The grid's edge vertices in order around the tile (for the skirt).
+std::vector<size_t> edge_ring(const TileMesh& m) {
+    const int n = m.segments;
+    std::vector<size_t> ring;
+    for (int i = 0; i < n; ++i) ring.push_back(m.index(i, 0));
+    for (int j = 0; j < n; ++j) ring.push_back(m.index(n, j));
+    for (int i = n; i > 0; --i) ring.push_back(m.index(i, n));
+    for (int j = n; j > 0; --j) ring.push_back(m.index(0, j));
+    return ring;
+}
+
+}  // namespace
+
+glm::dvec3 TileMesh::position_m(int i, int j, double morph) const {
+    const size_t k = index(i, j);
+    const double h = parent_height_m[k] + morph * (height_m[k] - parent_height_m[k]);
+    return directions[k] * (radius_m + h);
+}
+
+TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments) {
+    if (segments < 2 || segments % 2 || segments > 256)
+        throw std::invalid_argument("tile mesh: " + std::to_string(segments) + " segments (even, 2..256)");
+    TileMesh m;
+    m.key = key;
+    m.segments = segments;
+    m.radius_m = relief.radius_m();
+    const double spacing = tile_spacing_m(key.level, segments, relief.radius_m());
+    const int n = segments;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const glm::dvec3 d = key.direction(static_cast<double>(i) / n, static_cast<double>(j) / n);
+            m.directions.push_back(d);
+            m.height_m.push_back(relief.height_m(d, spacing));
+        }
+    fill_parent_heights(m, relief, key.level == 0 ? spacing : tile_spacing_m(key.level - 1, segments, m.radius_m));
+    m.centre_m = key.direction(0.5, 0.5) * m.radius_m;
+    // Deep enough to cover the largest step a neighbour one level coarser can leave at the edge.
+    m.skirt_depth_m = 2.0 * relief.mesh_error_m(spacing) + spacing * spacing / m.radius_m + 1.0;
+    return m;
+}
+
+double TileMesh::height_on_mesh_m(double u, double v, double morph) const {
+    const double x = std::clamp(u, 0.0, 1.0) * segments, y = std::clamp(v, 0.0, 1.0) * segments;
+    const int i = std::min(static_cast<int>(x), segments - 1), j = std::min(static_cast<int>(y), segments - 1);
+    const double fx = x - i, fy = y - j;
+    const auto h = [&](int a, int b) {
+        const size_t k = index(a, b);
+        return parent_height_m[k] + morph * (height_m[k] - parent_height_m[k]);
+    };
+    // Triangles (i,j)-(i+1,j)-(i+1,j+1) where fx >= fy, and (i,j)-(i+1,j+1)-(i,j+1) otherwise.
+    if (fx >= fy) return h(i, j) + fx * (h(i + 1, j) - h(i, j)) + fy * (h(i + 1, j + 1) - h(i + 1, j));
+    return h(i, j) + fy * (h(i, j + 1) - h(i, j)) + fx * (h(i + 1, j + 1) - h(i, j + 1));
+}
+
+std::vector<uint32_t> TileMesh::triangle_indices() const {
+    const int n = segments;
+    std::vector<uint32_t> idx;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const auto a = static_cast<uint32_t>(index(i, j)), b = static_cast<uint32_t>(index(i + 1, j)),
+                       c = static_cast<uint32_t>(index(i + 1, j + 1)), d = static_cast<uint32_t>(index(i, j + 1));
+            idx.insert(idx.end(), {a, b, c, a, c, d});
+        }
+    const std::vector<size_t> ring = edge_ring(*this);
+    const auto grid_count = static_cast<uint32_t>(directions.size());
+    for (size_t k = 0; k < ring.size(); ++k) {
+        const size_t k1 = (k + 1) % ring.size();
+        const auto top0 = static_cast<uint32_t>(ring[k]), top1 = static_cast<uint32_t>(ring[k1]);
+        const auto low0 = grid_count + static_cast<uint32_t>(k), low1 = grid_count + static_cast<uint32_t>(k1);
+        idx.insert(idx.end(), {top0, low0, low1, top0, low1, top1});
+    }
+    return idx;
+}
+
+std::vector<TileMesh::GpuVertex> TileMesh::gpu_vertices() const {
+    std::vector<GpuVertex> out;
+    const auto vertex = [&](size_t k, double drop_m) {
+        const glm::dvec3 own = directions[k] * (radius_m + height_m[k] - drop_m);
+        const glm::dvec3 parent = directions[k] * (radius_m + parent_height_m[k] - drop_m);
+        out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own)});
+    };
+    for (size_t k = 0; k < directions.size(); ++k) vertex(k, 0.0);
+    for (size_t k : edge_ring(*this)) vertex(k, skirt_depth_m);
+    return out;
+}
+
+}  // namespace cupola::terrain

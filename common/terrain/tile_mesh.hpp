@@ -1,0 +1,50 @@
+#pragma once
+// A tile's mesh, built on the CPU in double precision: (segments + 1)^2 vertices over the tile's
+// face square, each at its relief height for the tile's sample spacing, plus a skirt, a ring of
+// vertices hanging below each edge vertex, so that a neighbour of another level leaves no crack
+// (Ulrich 2002, as Sperlhofer 2011, section 4.4.1.3, describes it). Each vertex also carries the height
+// its parent tile's mesh has at the same place (the geomorph target: a vertex the parent lacks
+// takes the parent's linear interpolation of its two or four neighbours). The GPU receives the
+// positions relative to the tile's centre, as floats; the centre stays double on the CPU.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "terrain/relief.hpp"
+#include "terrain/tile_key.hpp"
+
+namespace cupola::terrain {
+
+struct TileMesh {
+    TileKey key;
+    int segments = 0;
+    glm::dvec3 centre_m{0.0};             // body-fixed, double
+    std::vector<glm::dvec3> directions;   // unit, (segments + 1)^2 row by row (v), then u
+    std::vector<double> height_m;         // at this tile's spacing
+    std::vector<double> parent_height_m;  // the parent mesh's height at the vertex
+    double skirt_depth_m = 0.0;           // how far the skirt hangs below the edge
+    double radius_m = 0.0;                // the body's reference sphere
+    int vertices_per_side() const { return segments + 1; }
+    // The grid point (i along u, j along v).
+    size_t index(int i, int j) const { return static_cast<size_t>(j) * (segments + 1) + i; }
+    // Body-fixed position of a grid vertex at a morph factor (0: the parent's shape, 1: its own).
+    glm::dvec3 position_m(int i, int j, double morph = 1.0) const;
+    // The mesh's height at (u, v) in [0, 1]^2 of the tile: on the triangle that holds it (each
+    // quad split along its (i, j)-(i+1, j+1) diagonal), as the GPU will draw it.
+    double height_on_mesh_m(double u, double v, double morph = 1.0) const;
+    // Triangle indices (grid, then skirt) into the vertex list grid vertices then skirt vertices.
+    std::vector<uint32_t> triangle_indices() const;
+    // Every vertex as floats relative to centre_m, grid then skirt (the skirt's edge vertices
+    // lowered by skirt_depth_m), with the morph target's offset alongside.
+    struct GpuVertex {
+        glm::vec3 position;      // own shape, relative to the centre
+        glm::vec3 parent_delta;  // parent shape minus own shape
+    };
+    std::vector<GpuVertex> gpu_vertices() const;
+};
+
+// The mesh of a tile; segments must be even (the parent's vertices are every other one).
+TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments);
+
+}  // namespace cupola::terrain
