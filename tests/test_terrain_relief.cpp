@@ -180,6 +180,9 @@ TEST(ElevationRaster, BadFilesAreNamedAndTheReliefFallsBackToProcedural) {
     // No coordinates at all: an extent that is not one of degrees.
     write_geotiff(dir + "/metres.tif", 4, 4, 500000.0, 5000000.0, 30.0, cone, false);
     EXPECT_NE(expect_error(dir + "/metres.tif").find("is not one of degrees"), std::string::npos);
+    // Heights in the wrong unit (here: millimetres) are refused, naming the sample.
+    write_geotiff(dir + "/millimetres.tif", 4, 4, 10.0, 46.0, 0.1, [](double, double) { return 2.5e6; });
+    EXPECT_NE(expect_error(dir + "/millimetres.tif").find("sample (0, 0) is 2500000"), std::string::npos);
     // What a node does with a bad file: procedural relief, the same on every node.
     ProceduralRelief p;
     const Relief fallback(6371e3, nullptr, p);

@@ -16,6 +16,9 @@ namespace cupola::terrain {
 namespace {
 
 constexpr double kDegToRad = 0.017453292519943295769;
+// No body's relief reaches this far from its reference sphere (Olympus Mons: 22 km): a sample
+// beyond it is a unit or scale error in the file.
+constexpr double kMaxHeight_m = 100e3;
 
 std::once_flag gdal_registered;
 
@@ -65,13 +68,20 @@ struct ElevationRaster::Impl {
 void ElevationRaster::Impl::open() {
     std::call_once(gdal_registered, [] { GDALAllRegister(); });
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    dataset = GDALOpen(path.c_str(), GA_ReadOnly);
+    std::vector<const char*> allowed;
+    for (const std::string& d : options.drivers) allowed.push_back(d.c_str());
+    allowed.push_back(nullptr);
+    dataset = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+                         options.drivers.empty() ? nullptr : allowed.data(), nullptr, nullptr);
     CPLPopErrorHandler();
     if (!dataset) fail(std::string("GDAL cannot open it (") + CPLGetLastErrorMsg() + ")");
     if (GDALGetRasterCount(dataset) < 1) fail("it has no raster band");
     band = GDALGetRasterBand(dataset, 1);
     width = GDALGetRasterXSize(dataset);
     height = GDALGetRasterYSize(dataset);
+    if (static_cast<double>(width) * height > options.max_samples)
+        fail("a raster of " + std::to_string(width) + "x" + std::to_string(height) + " samples is larger than " +
+             std::to_string(static_cast<long long>(options.max_samples)) + " samples");
     if (width < 2 || height < 2)
         fail("a raster of " + std::to_string(width) + "x" + std::to_string(height) +
              " samples is too small (at least 2x2)");
@@ -88,8 +98,12 @@ void ElevationRaster::Impl::open() {
 
 void ElevationRaster::Impl::check_geotransform() {
     if (GDALGetGeoTransform(dataset, gt) != CE_None) fail("it has no geotransform (where its samples lie)");
+    for (double v : gt)
+        if (!std::isfinite(v)) fail("its geotransform holds a value that is not a finite number");
     if (gt[2] != 0.0 || gt[4] != 0.0) fail("the raster is rotated or sheared (only north-up rasters are read)");
-    if (!(gt[1] > 0.0) || gt[5] == 0.0 || !std::isfinite(gt[1]) || !std::isfinite(gt[5]))
+    // From a tenth of a millimetre on the Earth (1e-9 degrees) to the whole circle.
+    const auto usable = [](double step) { return std::abs(step) >= 1e-9 && std::abs(step) <= 360.0; };
+    if (!(gt[1] > 0.0) || !usable(gt[1]) || !usable(gt[5]))
         fail("the sample size " + std::to_string(gt[1]) + " x " + std::to_string(gt[5]) + " degrees is not usable");
     const double span_lon = gt[1] * width;
     wraps = std::abs(span_lon - 360.0) < 1e-6 * 360.0;
@@ -179,6 +193,9 @@ void ElevationRaster::Impl::scan() {
                 const bool nd = missing(row[c]);
                 row[c] = nd ? std::nanf("") : static_cast<float>(row[c] * scale + offset);
                 if (nd) continue;
+                if (!(std::abs(row[c]) <= kMaxHeight_m))
+                    fail("sample (" + std::to_string(c) + ", " + std::to_string(y0 + r) + ") is " +
+                         std::to_string(row[c]) + " m after the band's scale and offset, beyond +-100 km");
                 any = true;
                 min_m = std::min(min_m, static_cast<double>(row[c]));
                 max_m = std::max(max_m, static_cast<double>(row[c]));

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cupola::terrain {
 
@@ -29,6 +30,8 @@ public:
     struct Options {
         size_t cache_bytes = size_t{64} << 20;  // the bound on the blocks kept
         int block_px = 256;                     // square blocks read at once
+        double max_samples = 4e9;               // larger rasters are refused (the scan reads all)
+        std::vector<std::string> drivers;       // GDAL drivers allowed to open it; empty: every one
     };
     // Opens and checks the file, and scans it once for its height range and steepest slope
     // (block by block, not kept). Throws ElevationError.
