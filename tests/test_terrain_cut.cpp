@@ -4,6 +4,7 @@
 // mesh of the same relief, at every morph between a tile and its parent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <random>
@@ -67,12 +68,23 @@ TEST(TerrainCut, EveryNodeChoosesTheSameCutAndItCoversEveryChannelOnce) {
     const ClusterConfig cluster = load_cluster_config(config);
     std::vector<uint64_t> hashes;
     TerrainCut cut;
+    std::vector<uint64_t> own_channel_hashes;
     for (size_t c = 0; c < cluster.channels.size(); ++c) {
-        const ClusterConfig own = load_cluster_config(config);
+        ClusterConfig own = load_cluster_config(config);
+        // The order the channels are listed in is no input to the cut: each node lists its own first.
+        std::rotate(own.channels.begin(), own.channels.begin() + static_cast<long>(c), own.channels.end());
         cut = select_cut(relief, cut_view_for_cluster(own, o.position_m, glm::dmat3(1.0), o.orientation), s);
         hashes.push_back(cut.hash());
+        // What a per-channel choice would give that node (for contrast).
+        own_channel_hashes.push_back(
+            select_cut(relief, cut_view_for_channel(own, own.channels[0], o.position_m, glm::dmat3(1.0), o.orientation),
+                       s)
+                .hash());
     }
     for (uint64_t h : hashes) EXPECT_EQ(h, hashes.front());
+    int differ = 0;
+    for (uint64_t h : own_channel_hashes) differ += h != hashes.front() ? 1 : 0;
+    EXPECT_EQ(differ, static_cast<int>(cluster.channels.size()));  // no channel alone gives the dome's cut
     std::printf("cut: %zu tiles (levels %d..%d), %d behind the horizon, %d outside every channel, capped %d\n",
                 cut.tiles.size(), cut.tiles.front().key.level, cut.tiles.back().key.level, cut.culled_by_horizon,
                 cut.culled_by_frusta, cut.capped);
@@ -156,6 +168,12 @@ TEST(TileMesh, SkirtsHangBelowTheEdgeAndTheParentShapeMatchesTheParentsMesh) {
             const glm::dvec2 pu = (st - plo) / (phi - plo);
             EXPECT_NEAR(m.height_on_mesh_m(a, b, 0.0), parent.height_on_mesh_m(pu.x, pu.y, 1.0), 1e-6) << a << " " << b;
         }
+    // A vertex the parent lacks morphs onto the parent's flat edge (its chord in 3-D), not onto the
+    // averaged height along its own direction (h^2 / 2R above the chord: metres at level 9).
+    const int cx = static_cast<int>(key.x % 2) * 8, cy = static_cast<int>(key.y % 2) * 8;
+    const glm::dvec3 chord_mid = 0.5 * (parent.position_m(cx, cy) + parent.position_m(cx + 1, cy));
+    EXPECT_LT(glm::length(m.parent_position_m(1, 0) - chord_mid), 1e-6);
+    EXPECT_LT(glm::length(m.position_m(1, 0, 0.0) - chord_mid), 1e-6);
     // The skirt: one vertex below each edge vertex, skirt_depth_m lower, and triangles for it.
     const auto v = m.gpu_vertices();
     ASSERT_EQ(v.size(), 17u * 17u + 4u * 16u);

@@ -49,6 +49,12 @@ double cone(double lon, double lat) {
     return std::max(0.0, 2000.0 * (1.0 - r / 0.5));
 }
 
+// The planetocentric latitude of a WGS 84 geodetic one.
+double centric_deg(double geodetic_deg) {
+    const double f = 1.0 / 298.257223563;
+    return std::atan((1 - f) * (1 - f) * std::tan(geodetic_deg * kDeg)) / kDeg;
+}
+
 std::string expect_error(const std::string& path) {
     try {
         ElevationRaster r(path);
@@ -88,7 +94,8 @@ TEST(ProceduralRelief, NoiseCurvatureIsWithinTheErrorModelsBound) {
     const double e = 1e-3;
     for (int i = 0; i < 200000; ++i) {
         const glm::dvec3 p(u(rng), u(rng), u(rng));
-        for (const glm::dvec3& axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::normalize(glm::dvec3(1, 1, 1))}) {
+        const glm::dvec3 random_axis = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+        for (const glm::dvec3& axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), random_axis}) {
             const double d2 =
                 (gradient_noise(p + e * axis, 3) - 2 * gradient_noise(p, 3) + gradient_noise(p - e * axis, 3)) /
                 (e * e);
@@ -120,16 +127,18 @@ TEST(ElevationRaster, AConeLiesAtItsLatitudeAndLongitudeWithinOneSample) {
     EXPECT_FALSE(r.covers_all_longitudes());
     // The peak: the highest of the heights on a fine grid lies within one sample of (10.25, 45.5).
     double best = -1.0, best_lon = 0.0, best_lat = 0.0;
-    for (double lat = 45.0; lat <= 46.0; lat += 0.002)
+    for (double lat = 45.0; lat <= 45.7; lat += 0.002)  // planetocentric: geodetic 45.19..45.89
         for (double lon = 9.6; lon <= 10.9; lon += 0.002) {
             const double h = r.height_m(lat * kDeg, lon * kDeg).value();
             if (h > best) best = h, best_lon = lon, best_lat = lat;
         }
+    // The file's latitudes are geodetic (WGS 84); Cupola's are planetocentric, 0.19 degrees less here.
     EXPECT_NEAR(best_lon, 10.25, step);
-    EXPECT_NEAR(best_lat, 45.5, step);
+    EXPECT_NEAR(best_lat, centric_deg(45.5), step);
+    EXPECT_GT(std::abs(45.5 - centric_deg(45.5)), 10 * step);  // the conversion matters at this scale
     // Its flank: within a sample's change of the cone's own height.
     for (double r_deg : {0.1, 0.2, 0.3, 0.4})
-        EXPECT_NEAR(r.height_m(45.5 * kDeg, (10.25 + r_deg) * kDeg).value(), cone(10.25 + r_deg, 45.5),
+        EXPECT_NEAR(r.height_m(centric_deg(45.5) * kDeg, (10.25 + r_deg) * kDeg).value(), cone(10.25 + r_deg, 45.5),
                     2000.0 / 0.5 * step)
             << r_deg;
     // Outside the extent: nothing (the relief falls back to procedural there).
@@ -190,6 +199,31 @@ TEST(ElevationRaster, BadFilesAreNamedAndTheReliefFallsBackToProcedural) {
     EXPECT_NE(fallback.height_m(lat_lon_to_direction(0.3, 0.2), 10.0), 0.0);
 }
 
+TEST(ElevationRaster, AMaskedSampleHasNoHeight) {
+    // A file without a no-data value whose voids are in a mask band (as GDAL writes one with
+    // GDALCreateMaskBand): masked samples have no height, they are not 0 m.
+    const std::string dir = test::scratch_dir("terrain_mask");
+    const std::string file =
+        write_geotiff(dir + "/masked.tif", 20, 10, 10.0, 46.0, 0.1, [](double, double) { return 500.0; });
+    {
+        GDALDatasetH ds = GDALOpen(file.c_str(), GA_Update);
+        ASSERT_NE(ds, nullptr);
+        GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+        ASSERT_EQ(GDALCreateMaskBand(band, GMF_PER_DATASET), CE_None);
+        std::vector<uint8_t> valid(200);
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 20; ++x) valid[static_cast<size_t>(y) * 20 + x] = x < 10 ? 0 : 255;
+        ASSERT_EQ(GDALRasterIO(GDALGetMaskBand(band), GF_Write, 0, 0, 20, 10, valid.data(), 20, 10, GDT_Byte, 0, 0),
+                  CE_None);
+        GDALClose(ds);
+    }
+    const ElevationRaster r(file);
+    const double lat = centric_deg(45.5) * kDeg;
+    EXPECT_FALSE(r.height_m(lat, 10.5 * kDeg).has_value());  // masked (west half)
+    EXPECT_NEAR(r.height_m(lat, 11.5 * kDeg).value(), 500.0, 1e-9);
+    EXPECT_EQ(r.min_height_m(), 500.0);
+}
+
 TEST(ElevationRaster, TheBlockCacheStaysWithinItsBound) {
     const std::string dir = test::scratch_dir("terrain_cache");
     const std::string file =
@@ -210,6 +244,13 @@ TEST(ElevationRaster, TheBlockCacheStaysWithinItsBound) {
     EXPECT_EQ(s.blocks, 20u);
     EXPECT_GT(s.evictions, 0u);
     EXPECT_EQ(s.hits + s.misses, 5000u * 4);  // four samples per height
-    // Evicted blocks read again give the same heights.
-    EXPECT_EQ(r.height_m(0.3, 0.4), r.height_m(0.3, 0.4));
+    // A block evicted and read again gives the same heights.
+    const auto before = r.height_m(0.3, 0.4);
+    const uint64_t misses = r.cache_stats().misses;
+    for (double lat : {-1.3, -0.9})  // 32 other blocks: more than the cache holds, so it is evicted
+        for (int k = 0; k < 32; ++k) r.height_m(lat, -3.1 + 0.19 * k);
+    const uint64_t misses_elsewhere = r.cache_stats().misses;
+    EXPECT_EQ(r.height_m(0.3, 0.4), before);
+    EXPECT_GT(misses_elsewhere, misses);
+    EXPECT_GT(r.cache_stats().misses, misses_elsewhere);  // it was read again, not found in the cache
 }

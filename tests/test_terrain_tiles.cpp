@@ -104,7 +104,7 @@ TEST(TileBound, HoldsEveryPointOfTheTileAtEveryHeight) {
             const glm::dvec3 q = key.direction(u(rng), u(rng)) * r;
             ASSERT_LE(glm::length(q - b.centre_m), b.radius_m * (1 + 1e-12)) << key.name();
         }
-        // Not wastefully large: within twice the tile's own extent plus the relief's range.
+        // Not wastefully large: within the tile's own extent (its diagonal) plus the relief's range.
         const double extent = glm::length(key.direction(0, 0) - key.direction(1, 1)) * relief.radius_m();
         EXPECT_LT(b.radius_m, extent + relief.max_height_m() - relief.min_height_m()) << key.name();
     }

@@ -19,12 +19,18 @@ glm::dmat3 body_from_dome(const ClusterConfig& cluster, const glm::dmat3& body_f
 
 }  // namespace
 
+// The shorter side of a pixel, as an angle, at the corners and the centre (at a corner of a
+// planar channel the radial side is the shorter: a square root of the solid angle would be the
+// geometric mean, too large).
 double finest_pixel_rad(const ChannelFrustum& f) {
     const double w = f.width(), h = f.height();
+    const auto angle = [&](const glm::dvec2& a, const glm::dvec2& b) {
+        return std::acos(std::clamp(glm::dot(f.pixel_to_dome_direction(a), f.pixel_to_dome_direction(b)), -1.0, 1.0));
+    };
     double finest = 1e9;
-    for (const glm::dvec2 p : {glm::dvec2(0.5, 0.5), glm::dvec2(w - 0.5, 0.5), glm::dvec2(0.5, h - 0.5),
-                               glm::dvec2(w - 0.5, h - 0.5), glm::dvec2(0.5 * w, 0.5 * h)})
-        finest = std::min(finest, std::sqrt(f.pixel_solid_angle(p)));
+    for (const glm::dvec2 p : {glm::dvec2(0.0, 0.0), glm::dvec2(w - 1, 0.0), glm::dvec2(0.0, h - 1),
+                               glm::dvec2(w - 1, h - 1), glm::dvec2(0.5 * w, 0.5 * h)})
+        finest = std::min({finest, angle(p, p + glm::dvec2(1, 0)), angle(p, p + glm::dvec2(0, 1))});
     return finest;
 }
 

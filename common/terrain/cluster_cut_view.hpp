@@ -20,7 +20,7 @@ CutView cut_view_for_channel(const ClusterConfig& cluster, const ChannelConfig& 
                              const glm::dvec3& camera_body_m, const glm::dmat3& body_from_world,
                              const glm::dquat& camera_orientation);
 
-// The angle of a channel's smallest pixel (a corner pixel, for a planar projection).
+// The angle of the shortest side of a channel's pixels (at a corner, for a planar projection).
 double finest_pixel_rad(const ChannelFrustum& f);
 
 }  // namespace cupola::terrain

@@ -27,8 +27,9 @@ struct FaceAxes {
 FaceAxes face_axes(CubeFace face);
 
 // The unit direction of a face point, and the face point of a direction (the face its largest
-// component names; ties go to the lower face index). direction_to_face(face_to_direction(p)) is p
-// to 1e-15 (tests/test_terrain_tiles).
+// component names; ties go to the lower face index, so a point on a face's edge may come back on
+// the neighbouring face). face_to_direction(direction_to_face(d)) is d to 1e-14
+// (tests/test_terrain_tiles).
 glm::dvec3 face_to_direction(const FacePoint& p);
 FacePoint direction_to_face(const glm::dvec3& dir);
 

@@ -35,12 +35,15 @@ struct ElevationRaster::Impl {
     Options options;
     GDALDatasetH dataset = nullptr;
     GDALRasterBandH band = nullptr;
+    GDALRasterBandH mask = nullptr;  // a per-dataset or alpha mask band, when the file has one
     int width = 0, height = 0;
     double gt[6] = {0, 1, 0, 0, 0, -1};
     double scale = 1.0, offset = 0.0;
     std::optional<double> no_data;
     double min_m = 0.0, max_m = 0.0, rise_m_per_rad = 0.0;
     bool wraps = false;
+    // tan(geodetic latitude) / tan(planetocentric latitude) on the file's ellipsoid: 1 / (1 - f)^2.
+    double geodetic_scale = 1.0;
     std::chrono::milliseconds delay{0};
 
     mutable std::mutex mutex;
@@ -59,7 +62,10 @@ struct ElevationRaster::Impl {
     void open();
     void check_geotransform();
     void check_coordinates();
+    void check_datum(OGRSpatialReferenceH srs);
+    std::vector<float> read_window(int x0, int y0, int w, int h) const;
     Block read_block(int bx, int by) const;
+    void scan_row(const float* row, int y, const std::vector<float>& above);
     const Block& block(int bx, int by) const;
     std::optional<double> sample(int col, int row) const;
     void scan();
@@ -92,6 +98,8 @@ void ElevationRaster::Impl::open() {
     if (!has) offset = 0.0;
     const double nd = GDALGetRasterNoDataValue(band, &has);
     if (has) no_data = nd;
+    const int mask_flags = GDALGetMaskFlags(band);
+    if (mask_flags & (GMF_PER_DATASET | GMF_ALPHA)) mask = GDALGetMaskBand(band);
     check_geotransform();
     check_coordinates();
 }
@@ -115,6 +123,7 @@ void ElevationRaster::Impl::check_coordinates() {
     OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset);
     if (srs && !OSRIsGeographic(srs))
         fail("its coordinates are projected, not geographic (reproject it, e.g. gdalwarp -t_srs EPSG:4326)");
+    if (srs) check_datum(srs);
     const double lon0 = gt[0], lon1 = gt[0] + gt[1] * width;
     const double lat_a = gt[3], lat_b = gt[3] + gt[5] * height;
     if (lon0 < -180.0 - 1e-9 || lon1 > 360.0 + 1e-9 || std::min(lat_a, lat_b) < -90.0 - 1e-9 ||
@@ -124,18 +133,49 @@ void ElevationRaster::Impl::check_coordinates() {
              ") is not one of degrees");
 }
 
+// Degrees about the Greenwich meridian only; an ellipsoid's latitudes are geodetic, and Cupola's are
+// planetocentric (the direction from the body's centre): height_m converts, by the flattening.
+void ElevationRaster::Impl::check_datum(OGRSpatialReferenceH srs) {
+    const double unit_rad = OSRGetAngularUnits(srs, nullptr);
+    if (std::abs(unit_rad - kDegToRad) > 1e-12)
+        fail("its angular unit is " + std::to_string(unit_rad) + " rad, not the degree");
+    const double meridian = OSRGetPrimeMeridian(srs, nullptr);
+    if (meridian != 0.0) fail("its prime meridian is " + std::to_string(meridian) + " degrees from Greenwich");
+    OGRErr err = OGRERR_NONE;
+    const double inverse_flattening = OSRGetInvFlattening(srs, &err);
+    if (err == OGRERR_NONE && inverse_flattening > 1.0) {
+        const double one_minus_f = 1.0 - 1.0 / inverse_flattening;
+        geodetic_scale = 1.0 / (one_minus_f * one_minus_f);
+    }
+}
+
+// Heights of a window of the raster, row by row: NaN where the band's no-data value, its mask (a
+// per-dataset or alpha mask, where the file has one) or a non-number says there is no height;
+// the band's scale and offset applied elsewhere.
+std::vector<float> ElevationRaster::Impl::read_window(int x0, int y0, int w, int h) const {
+    std::vector<float> v(static_cast<size_t>(w) * h);
+    const std::string where = std::to_string(x0) + ".." + std::to_string(x0 + w - 1) + " x " + std::to_string(y0) +
+                              ".." + std::to_string(y0 + h - 1);
+    if (GDALRasterIO(band, GF_Read, x0, y0, w, h, v.data(), w, h, GDT_Float32, 0, 0) != CE_None)
+        fail("cannot read samples " + where + " (" + CPLGetLastErrorMsg() + ")");
+    std::vector<uint8_t> valid;
+    if (mask) {
+        valid.resize(v.size());
+        if (GDALRasterIO(mask, GF_Read, x0, y0, w, h, valid.data(), w, h, GDT_Byte, 0, 0) != CE_None)
+            fail("cannot read the mask of samples " + where + " (" + CPLGetLastErrorMsg() + ")");
+    }
+    for (size_t i = 0; i < v.size(); ++i)
+        v[i] = missing(v[i]) || (mask && valid[i] == 0) ? std::nanf("") : static_cast<float>(v[i] * scale + offset);
+    return v;
+}
+
 Block ElevationRaster::Impl::read_block(int bx, int by) const {
     if (delay.count() > 0) std::this_thread::sleep_for(delay);
     Block b;
     const int x0 = bx * options.block_px, y0 = by * options.block_px;
     b.width = std::min(options.block_px, width - x0);
     b.height = std::min(options.block_px, height - y0);
-    b.h.resize(static_cast<size_t>(b.width) * b.height);
-    if (GDALRasterIO(band, GF_Read, x0, y0, b.width, b.height, b.h.data(), b.width, b.height, GDT_Float32, 0, 0) !=
-        CE_None)
-        fail("cannot read samples " + std::to_string(x0) + ".." + std::to_string(x0 + b.width - 1) + " x " +
-             std::to_string(y0) + ".." + std::to_string(y0 + b.height - 1) + " (" + CPLGetLastErrorMsg() + ")");
-    for (float& v : b.h) v = missing(v) ? std::nanf("") : static_cast<float>(v * scale + offset);
+    b.h = read_window(x0, y0, b.width, b.height);
     return b;
 }
 
@@ -171,44 +211,42 @@ std::optional<double> ElevationRaster::Impl::sample(int col, int row) const {
     return v;
 }
 
-// One pass over the raster, block row by block row, not cached: the height range and the steepest
-// rise between neighbours (along a row, the run is scaled by the cosine of the latitude).
+// One row's part of the scan: the range, and the steepest rise along the row (the run scaled by
+// the cosine of the latitude), to the row above, and across the antimeridian when it wraps.
+void ElevationRaster::Impl::scan_row(const float* row, int y, const std::vector<float>& above) {
+    const double lat = (gt[3] + gt[5] * (y + 0.5)) * kDegToRad;
+    const double run_lon = gt[1] * kDegToRad * std::max(std::cos(lat), 1e-3), run_lat = std::abs(gt[5]) * kDegToRad;
+    const auto rise = [&](float a, float b, double run) {
+        if (!std::isnan(a) && !std::isnan(b)) rise_m_per_rad = std::max(rise_m_per_rad, std::abs(a - b) / run);
+    };
+    for (int c = 0; c < width; ++c) {
+        if (std::isnan(row[c])) continue;
+        if (!(std::abs(row[c]) <= kMaxHeight_m))
+            fail("sample (" + std::to_string(c) + ", " + std::to_string(y) + ") is " + std::to_string(row[c]) +
+                 " m after the band's scale and offset, beyond +-100 km");
+        min_m = std::min(min_m, static_cast<double>(row[c]));
+        max_m = std::max(max_m, static_cast<double>(row[c]));
+        if (c > 0) rise(row[c], row[c - 1], run_lon);
+        if (!above.empty()) rise(row[c], above[static_cast<size_t>(c)], run_lat);
+    }
+    if (wraps) rise(row[0], row[width - 1], run_lon);
+}
+
+// One pass over the raster, a strip of block_px rows at a time, not cached.
 void ElevationRaster::Impl::scan() {
-    bool any = false;
     min_m = 1e300;
     max_m = -1e300;
-    const double dlon_rad = gt[1] * kDegToRad, dlat_rad = std::abs(gt[5]) * kDegToRad;
-    std::vector<float> prev_row;
+    std::vector<float> above;
     for (int y0 = 0; y0 < height; y0 += options.block_px) {
         const int rows = std::min(options.block_px, height - y0);
-        std::vector<float> strip(static_cast<size_t>(width) * rows);
-        if (GDALRasterIO(band, GF_Read, 0, y0, width, rows, strip.data(), width, rows, GDT_Float32, 0, 0) != CE_None)
-            fail("cannot read rows " + std::to_string(y0) + ".." + std::to_string(y0 + rows - 1) + " (" +
-                 CPLGetLastErrorMsg() + ")");
+        const std::vector<float> strip = read_window(0, y0, width, rows);
         for (int r = 0; r < rows; ++r) {
-            const double lat = (gt[3] + gt[5] * (y0 + r + 0.5)) * kDegToRad;
-            const double run_lon = dlon_rad * std::max(std::cos(lat), 1e-3);
-            float* row = &strip[static_cast<size_t>(r) * width];
-            for (int c = 0; c < width; ++c) {
-                const bool nd = missing(row[c]);
-                row[c] = nd ? std::nanf("") : static_cast<float>(row[c] * scale + offset);
-                if (nd) continue;
-                if (!(std::abs(row[c]) <= kMaxHeight_m))
-                    fail("sample (" + std::to_string(c) + ", " + std::to_string(y0 + r) + ") is " +
-                         std::to_string(row[c]) + " m after the band's scale and offset, beyond +-100 km");
-                any = true;
-                min_m = std::min(min_m, static_cast<double>(row[c]));
-                max_m = std::max(max_m, static_cast<double>(row[c]));
-                if (c > 0 && !std::isnan(row[c - 1]))
-                    rise_m_per_rad = std::max(rise_m_per_rad, std::abs(row[c] - row[c - 1]) / run_lon);
-                if (!prev_row.empty() && !std::isnan(prev_row[static_cast<size_t>(c)]))
-                    rise_m_per_rad =
-                        std::max(rise_m_per_rad, std::abs(row[c] - prev_row[static_cast<size_t>(c)]) / dlat_rad);
-            }
-            prev_row.assign(row, row + width);
+            const float* row = &strip[static_cast<size_t>(r) * width];
+            scan_row(row, y0 + r, above);
+            above.assign(row, row + width);
         }
     }
-    if (!any) fail("every sample is no-data");
+    if (min_m > max_m) fail("every sample is no-data");
 }
 
 ElevationRaster::ElevationRaster(const std::string& path, const Options& options) : impl_(std::make_unique<Impl>()) {
@@ -232,7 +270,7 @@ ElevationRaster::~ElevationRaster() {
 std::optional<double> ElevationRaster::height_m(double lat_rad, double lon_rad) const {
     const Impl& m = *impl_;
     double lon_deg = lon_rad / kDegToRad;
-    const double lat_deg = lat_rad / kDegToRad;
+    const double lat_deg = std::atan2(std::sin(lat_rad) * m.geodetic_scale, std::cos(lat_rad)) / kDegToRad;
     const double span = m.gt[1] * m.width;
     if (lon_deg < m.gt[0]) lon_deg += 360.0 * std::ceil((m.gt[0] - lon_deg) / 360.0);
     if (lon_deg >= m.gt[0] + 360.0) lon_deg -= 360.0 * std::floor((lon_deg - m.gt[0]) / 360.0);

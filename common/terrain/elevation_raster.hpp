@@ -1,7 +1,9 @@
 #pragma once
 // Elevation data read through GDAL (GeoTIFF and every raster format GDAL reads): a north-up raster
-// in geographic or planetocentric coordinates (degrees of longitude and latitude), heights in
-// metres after the band's scale and offset. Blocks of the raster are read on demand and kept in
+// in geographic coordinates (degrees of longitude east of Greenwich and latitude), heights in
+// metres after the band's scale and offset. Latitudes on an ellipsoid (WGS 84) are geodetic: the
+// planetocentric latitudes asked for are converted by its flattening; without one (a sphere, or
+// no coordinate system) they are taken as planetocentric. Blocks of the raster are read on demand and kept in
 // a cache bounded in bytes, least recently used first out; the cache's size and traffic are
 // reported. Safe to call from several threads (one lock around the cache and GDAL).
 #include <chrono>
@@ -41,7 +43,8 @@ public:
     ElevationRaster(const ElevationRaster&) = delete;
     ElevationRaster& operator=(const ElevationRaster&) = delete;
 
-    // The height (m), bilinear between the four nearest sample centres; nothing outside the
+    // The height (m) at a planetocentric latitude and east longitude, bilinear between the four
+    // nearest sample centres; nothing outside the
     // data's extent or where a sample is the band's no-data value. Throws ElevationError when a
     // block cannot be read.
     std::optional<double> height_m(double lat_rad, double lon_rad) const;

@@ -67,14 +67,15 @@ double ProceduralRelief::amplitude_bound_m() const {
 }
 
 // Left out or faded (lambda < 8h): the whole amplitude. Carried: a quintic-faded gradient noise
-// of unit lattice has a second derivative below 16 per unit squared (the largest of 600000
-// finite differences: 12.3, tests/test_terrain_relief), so linear interpolation over h misses at
-// most h^2/8 * 16 a / lambda^2 = 2 a (h / lambda)^2.
+// of unit lattice has a second derivative below 16 per unit squared in any direction (largest
+// measured: tests/test_terrain_relief), and linear interpolation over a mesh triangle whose
+// longest side is the quad's diagonal sqrt(2) h misses at most (sqrt(2) h)^2 / 8 times that:
+// 4 a (h / lambda)^2.
 double ProceduralRelief::mesh_error_m(double spacing_m, double coarsest_wavelength_m) const {
     double e = 0.0, lambda = base_wavelength_m, a = base_amplitude_m;
     for (int k = 0; k < octaves; ++k, lambda *= 0.5, a *= gain) {
         if (coarsest_wavelength_m > 0.0 && lambda >= coarsest_wavelength_m) continue;
-        e += lambda < 8.0 * spacing_m ? a : 2.0 * a * (spacing_m / lambda) * (spacing_m / lambda);
+        e += lambda < 8.0 * spacing_m ? a : 4.0 * a * (spacing_m / lambda) * (spacing_m / lambda);
     }
     return e;
 }

@@ -30,6 +30,12 @@ double Relief::height_m(const glm::dvec3& dir, double spacing_m) const {
     return h ? *h + detail : procedural_.height_m(p, spacing_m);
 }
 
+bool Relief::data_covers(const glm::dvec3& dir) const {
+    if (!data_) return false;
+    const glm::dvec2 ll = direction_to_lat_lon_rad(dir);
+    return data_->height_m(ll.x, ll.y).has_value();
+}
+
 double Relief::mesh_error_m(double spacing_m) const {
     const double procedural_alone = procedural_.mesh_error_m(spacing_m);
     if (!data_) return procedural_alone;

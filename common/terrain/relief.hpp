@@ -32,6 +32,9 @@ public:
     double max_height_m() const { return max_m_; }
     double radius_m() const { return radius_m_; }
     bool has_data() const { return data_ != nullptr; }
+    // Whether the data gives the height in this direction (false without data, outside its
+    // extent, or next to a no-data sample): where it does not, the procedural relief is whole.
+    bool data_covers(const glm::dvec3& dir) const;
     const ElevationRaster* data() const { return data_.get(); }
 
 private:

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "overlay/arc_chunks.hpp"
 
@@ -55,12 +57,18 @@ HeightRange tile_height_range(const TileKey& key, const Relief& relief) {
     constexpr int kGrid = 9;
     const double spacing = tile_spacing_m(key.level, kGrid - 1, relief.radius_m());
     HeightRange r{1e300, -1e300};
+    int covered = 0;
     for (int j = 0; j < kGrid; ++j)
         for (int i = 0; i < kGrid; ++i) {
-            const double h = relief.height_m(key.direction(i / (kGrid - 1.0), j / (kGrid - 1.0)), spacing);
+            const glm::dvec3 d = key.direction(i / (kGrid - 1.0), j / (kGrid - 1.0));
+            const double h = relief.height_m(d, spacing);
+            covered += relief.data_covers(d) ? 1 : 0;
             r.min_m = std::min(r.min_m, h);
             r.max_m = std::max(r.max_m, h);
         }
+    // A tile across the data's edge (or a void in it) switches between the data and the whole
+    // procedural relief: its surface can take any height of the relief.
+    if (relief.has_data() && covered != kGrid * kGrid) return {relief.min_height_m(), relief.max_height_m()};
     const double margin = relief.mesh_error_m(spacing);
     r.min_m = std::max(r.min_m - margin, relief.min_height_m());
     r.max_m = std::min(r.max_m + margin, relief.max_height_m());
@@ -113,7 +121,9 @@ TileBound tile_bound(const TileKey& key, const Relief& relief, const HeightRange
 
 double screen_error_px(const Relief& relief, int level, const CutView& view, const CutSettings& s, double distance_m) {
     const double h = tile_spacing_m(level, s.segments, relief.radius_m());
-    const double error_m = relief.mesh_error_m(h) + h * h / (8.0 * relief.radius_m());
+    // The chord's sag across a quad's diagonal (sqrt 2 h), where a flat triangle is farthest from
+    // the sphere.
+    const double error_m = relief.mesh_error_m(h) + h * h / (4.0 * relief.radius_m());
     if (distance_m <= 0.0) return std::numeric_limits<double>::infinity();
     return error_m / (distance_m * view.pixel_rad);
 }
@@ -128,6 +138,9 @@ TerrainCut select_cut(const Relief& relief, const CutView& view, const CutSettin
 }
 
 TerrainCut select_cut(const Relief& relief, const CutView& view, const CutSettings& settings, TileRangeCache& ranges) {
+    if (settings.max_level < 0 || settings.max_level > kMaxTileLevel)
+        throw std::invalid_argument("terrain cut: max_level " + std::to_string(settings.max_level) + " is not in 0.." +
+                                    std::to_string(kMaxTileLevel));
     TerrainCut cut;
     std::vector<TileKey> stack;
     for (int f = kCubeFaces - 1; f >= 0; --f) stack.push_back({static_cast<CubeFace>(f), 0, 0, 0});

@@ -49,10 +49,21 @@ std::vector<size_t> edge_ring(const TileMesh& m) {
 
 }  // namespace
 
+glm::dvec3 TileMesh::parent_position_m(int i, int j) const {
+    const auto even = [&](int a, int b) {
+        const size_t k = index(a, b);
+        return directions[k] * (radius_m + parent_height_m[k]);
+    };
+    const bool odd_i = i % 2, odd_j = j % 2;
+    if (odd_i && odd_j) return 0.5 * (even(i - 1, j - 1) + even(i + 1, j + 1));
+    if (odd_i) return 0.5 * (even(i - 1, j) + even(i + 1, j));
+    if (odd_j) return 0.5 * (even(i, j - 1) + even(i, j + 1));
+    return even(i, j);
+}
+
 glm::dvec3 TileMesh::position_m(int i, int j, double morph) const {
-    const size_t k = index(i, j);
-    const double h = parent_height_m[k] + morph * (height_m[k] - parent_height_m[k]);
-    return directions[k] * (radius_m + h);
+    const glm::dvec3 own = directions[index(i, j)] * (radius_m + height_m[index(i, j)]);
+    return glm::mix(parent_position_m(i, j), own, morph);
 }
 
 TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments) {
@@ -72,8 +83,11 @@ TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments)
         }
     fill_parent_heights(m, relief, key.level == 0 ? spacing : tile_spacing_m(key.level - 1, segments, m.radius_m));
     m.centre_m = key.direction(0.5, 0.5) * m.radius_m;
-    // Deep enough to cover the largest step a neighbour one level coarser can leave at the edge.
-    m.skirt_depth_m = 2.0 * relief.mesh_error_m(spacing) + spacing * spacing / m.radius_m + 1.0;
+    // Deep enough for the step a neighbour two levels coarser (a cut neighbour, or a stand-in)
+    // can leave at the shared edge: both meshes' errors and the coarser chord's sag.
+    const double coarse = 4.0 * spacing;
+    m.skirt_depth_m =
+        relief.mesh_error_m(spacing) + relief.mesh_error_m(coarse) + coarse * coarse / (4.0 * m.radius_m) + 1.0;
     return m;
 }
 
@@ -113,8 +127,10 @@ std::vector<uint32_t> TileMesh::triangle_indices() const {
 std::vector<TileMesh::GpuVertex> TileMesh::gpu_vertices() const {
     std::vector<GpuVertex> out;
     const auto vertex = [&](size_t k, double drop_m) {
-        const glm::dvec3 own = directions[k] * (radius_m + height_m[k] - drop_m);
-        const glm::dvec3 parent = directions[k] * (radius_m + parent_height_m[k] - drop_m);
+        const int i = static_cast<int>(k % static_cast<size_t>(segments + 1)),
+                  j = static_cast<int>(k / static_cast<size_t>(segments + 1));
+        const glm::dvec3 own = position_m(i, j) - directions[k] * drop_m;
+        const glm::dvec3 parent = parent_position_m(i, j) - directions[k] * drop_m;
         out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own)});
     };
     for (size_t k = 0; k < directions.size(); ++k) vertex(k, 0.0);

@@ -2,10 +2,12 @@
 // A tile's mesh, built on the CPU in double precision: (segments + 1)^2 vertices over the tile's
 // face square, each at its relief height for the tile's sample spacing, plus a skirt, a ring of
 // vertices hanging below each edge vertex, so that a neighbour of another level leaves no crack
-// (Ulrich 2002, as Sperlhofer 2011, section 4.4.1.3, describes it). Each vertex also carries the height
-// its parent tile's mesh has at the same place (the geomorph target: a vertex the parent lacks
-// takes the parent's linear interpolation of its two or four neighbours). The GPU receives the
-// positions relative to the tile's centre, as floats; the centre stays double on the CPU.
+// (Ulrich 2002, as Sperlhofer 2011, section 4.4.1.3, describes it). Each vertex also carries its
+// geomorph target, the point of its parent tile's mesh at the same place: a vertex the parent
+// has at the parent's height; one it lacks at the midpoint of the parent's edge or diagonal
+// between its two neighbours, in 3-D (on the parent's flat triangle, not at the averaged height
+// along the radius, which would lie h^2 / 2R above it). The GPU receives the positions relative
+// to the tile's centre, as floats; the centre stays double on the CPU.
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -30,8 +32,11 @@ struct TileMesh {
     size_t index(int i, int j) const { return static_cast<size_t>(j) * (segments + 1) + i; }
     // Body-fixed position of a grid vertex at a morph factor (0: the parent's shape, 1: its own).
     glm::dvec3 position_m(int i, int j, double morph = 1.0) const;
-    // The mesh's height at (u, v) in [0, 1]^2 of the tile: on the triangle that holds it (each
-    // quad split along its (i, j)-(i+1, j+1) diagonal), as the GPU will draw it.
+    glm::dvec3 parent_position_m(int i, int j) const;
+    // The mesh's height at (u, v) in [0, 1]^2 of the tile, interpolated in height over the
+    // triangle that holds it (each quad split along its (i, j)-(i+1, j+1) diagonal). The GPU's
+    // flat triangles lie below this by at most the chord's sag across the diagonal, h^2 / 4R,
+    // which the cut's error counts.
     double height_on_mesh_m(double u, double v, double morph = 1.0) const;
     // Triangle indices (grid, then skirt) into the vertex list grid vertices then skirt vertices.
     std::vector<uint32_t> triangle_indices() const;

@@ -31,6 +31,7 @@ TileStore::~TileStore() {
         stopping_ = true;
     }
     wake_.notify_all();
+    idle_.notify_all();
     for (std::thread& t : workers_) t.join();
 }
 
@@ -74,6 +75,13 @@ void TileStore::queue_missing(const std::vector<TileKey>& keys) {
     stats_.queued = queue_.size();
 }
 
+// Under the lock: the missing tile and its unbuilt ancestors below the stand-in, so that the
+// stand-in sharpens level by level (the queue is coarsest first).
+void TileStore::want(const TileKey& key, int stand_in_level, std::vector<TileKey>& missing) const {
+    for (TileKey k = key; k.level > stand_in_level; k = k.parent())
+        if (!cache_.count(k.id())) missing.push_back(k);
+}
+
 TileDrawList TileStore::request(const TerrainCut& cut) {
     TileDrawList out;
     std::vector<TileKey> missing;
@@ -83,10 +91,7 @@ TileDrawList TileStore::request(const TerrainCut& cut) {
         for (const CutTile& t : cut.tiles) {
             std::shared_ptr<const TileMesh> m = nearest_built(t.key);
             if (!m) continue;
-            if (m->key != t.key) {
-                ++out.stand_ins;
-                missing.push_back(t.key);
-            }
+            if (m->key != t.key) want(t.key, m->key.level, missing);
             chosen.emplace(m->key.id(), m);
         }
         // An ancestor stands in for everything under it: drop the chosen tiles inside another.
@@ -100,6 +105,10 @@ TileDrawList TileStore::request(const TerrainCut& cut) {
             touch(id);
         }
         std::sort(out.meshes.begin(), out.meshes.end(), [](const auto& a, const auto& b) { return a->key < b->key; });
+        // Every cut tile not drawn as itself: missing, or built but under a stand-in.
+        std::unordered_set<uint64_t> drawn;
+        for (const auto& m : out.meshes) drawn.insert(m->key.id());
+        for (const CutTile& t : cut.tiles) out.stand_ins += drawn.count(t.key.id()) ? 0 : 1;
         queue_missing(missing);
         ++stats_.frames;
         if (out.stand_ins > 0) ++stats_.fallback_frames;
@@ -129,6 +138,8 @@ void TileStore::work() {
             mesh = std::make_shared<const TileMesh>(build_tile_mesh(key, *relief_, options_.segments));
         } catch (const std::exception& e) {
             failure = e.what();
+        } catch (...) {
+            failure = "an exception that is not a std::exception";
         }
         finish(key, mesh, failure);
     }
@@ -154,7 +165,7 @@ void TileStore::finish(const TileKey& key, const std::shared_ptr<const TileMesh>
 
 void TileStore::wait_idle() {
     std::unique_lock<std::mutex> lock(mutex_);
-    idle_.wait(lock, [this] { return queue_.empty() && building_ == 0; });
+    idle_.wait(lock, [this] { return stopping_ || (queue_.empty() && building_ == 0); });
 }
 
 TileStoreStats TileStore::stats() const {

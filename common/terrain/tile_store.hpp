@@ -3,8 +3,12 @@
 // cut's tiles and never waits for a build or a file read. A tile not built yet is drawn as its
 // nearest built ancestor (the six level-0 tiles are built before the store is returned, so there
 // always is one), which then stands in for every tile of the cut under it; the frames in which
-// that happened are counted. Builds are queued coarsest first, so a fallback sharpens level by
-// level.
+// that happened are counted. A missing tile's unbuilt ancestors are queued with it and builds run
+// coarsest first, so a stand-in sharpens level by level. A tile whose build fails is not asked
+// for again: its nearest built ancestor stays in.
+//
+// While tiles load, two nodes can draw different stand-ins for a few frames (each still covers
+// the cut exactly once); once every node has built the cut, all draw the same tiles.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -62,6 +66,7 @@ public:
 private:
     std::shared_ptr<const TileMesh> nearest_built(const TileKey& key);
     void queue_missing(const std::vector<TileKey>& keys);
+    void want(const TileKey& key, int stand_in_level, std::vector<TileKey>& missing) const;
     void work();
     void finish(const TileKey& key, const std::shared_ptr<const TileMesh>& mesh, const std::string& failure);
     void keep(const std::shared_ptr<const TileMesh>& mesh);
