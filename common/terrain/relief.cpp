@@ -22,12 +22,11 @@ Relief::Relief(double radius_m, std::shared_ptr<const ElevationRaster> data, con
 
 double Relief::height_m(const glm::dvec3& dir, double spacing_m) const {
     const glm::dvec3 p = dir * radius_m_;
-    const double detail = procedural_.height_m(p, spacing_m, detail_below_m_);
-    if (!data_) return detail;
+    if (!data_) return procedural_.height_m(p, spacing_m);
     const glm::dvec2 ll = direction_to_lat_lon_rad(dir);
     const std::optional<double> h = data_->height_m(ll.x, ll.y);
     // Outside the data's extent, or at a no-data sample: the procedural relief whole.
-    return h ? *h + detail : procedural_.height_m(p, spacing_m);
+    return h ? *h + procedural_.height_m(p, spacing_m, detail_below_m_) : procedural_.height_m(p, spacing_m);
 }
 
 bool Relief::data_covers(const glm::dvec3& dir) const {

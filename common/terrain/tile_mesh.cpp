@@ -11,28 +11,30 @@ namespace cupola::terrain {
 
 namespace {
 
-// The parent's shape at the grid points: the even ones are its vertices (at its spacing); an odd
-// one lies on its edge between two of them, or in its quad on the diagonal between two (the
-// parent splits its quads along the same diagonal).
+// The parent's vertices a grid point lies between: itself twice when the parent has it (both
+// indices even); otherwise the two ends of the parent's edge, or of its quad's diagonal (the
+// parent splits its quads along the same diagonal), it is the midpoint of.
+struct ParentSpan {
+    glm::ivec2 a, b;
+};
+ParentSpan parent_span(int i, int j) {
+    const int di = i % 2, dj = j % 2;
+    return {{i - di, j - dj}, {i + di, j + dj}};
+}
+
+// The parent's shape at the grid points: its vertices at its spacing, the points between them
+// at the mean of the two.
 void fill_parent_heights(TileMesh& m, const Relief& relief, double parent_spacing_m) {
     const int n = m.segments;
     m.parent_height_m.assign(m.height_m.size(), 0.0);
     for (int j = 0; j <= n; j += 2)
         for (int i = 0; i <= n; i += 2)
             m.parent_height_m[m.index(i, j)] = relief.height_m(m.directions[m.index(i, j)], parent_spacing_m);
-    const auto at = [&](int i, int j) { return m.parent_height_m[m.index(i, j)]; };
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i) {
-            const bool odd_i = i % 2, odd_j = j % 2;
-            if (!odd_i && !odd_j) continue;
-            double h;
-            if (odd_i && odd_j)
-                h = 0.5 * (at(i - 1, j - 1) + at(i + 1, j + 1));
-            else if (odd_i)
-                h = 0.5 * (at(i - 1, j) + at(i + 1, j));
-            else
-                h = 0.5 * (at(i, j - 1) + at(i, j + 1));
-            m.parent_height_m[m.index(i, j)] = h;
+            const ParentSpan s = parent_span(i, j);
+            m.parent_height_m[m.index(i, j)] =
+                0.5 * (m.parent_height_m[m.index(s.a.x, s.a.y)] + m.parent_height_m[m.index(s.b.x, s.b.y)]);
         }
 }
 
@@ -50,15 +52,12 @@ std::vector<size_t> edge_ring(const TileMesh& m) {
 }  // namespace
 
 glm::dvec3 TileMesh::parent_position_m(int i, int j) const {
-    const auto even = [&](int a, int b) {
-        const size_t k = index(a, b);
+    const auto vertex = [&](const glm::ivec2& g) {
+        const size_t k = index(g.x, g.y);
         return directions[k] * (radius_m + parent_height_m[k]);
     };
-    const bool odd_i = i % 2, odd_j = j % 2;
-    if (odd_i && odd_j) return 0.5 * (even(i - 1, j - 1) + even(i + 1, j + 1));
-    if (odd_i) return 0.5 * (even(i - 1, j) + even(i + 1, j));
-    if (odd_j) return 0.5 * (even(i, j - 1) + even(i, j + 1));
-    return even(i, j);
+    const ParentSpan s = parent_span(i, j);
+    return 0.5 * (vertex(s.a) + vertex(s.b));
 }
 
 glm::dvec3 TileMesh::position_m(int i, int j, double morph) const {

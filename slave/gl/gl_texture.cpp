@@ -14,6 +14,13 @@ void check_size(int width, int height) {
                                  " is not positive");
 }
 
+// The levels of a full mipmap chain, level 0 down to 1x1.
+int full_mip_count(int width, int height) {
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    return levels;
+}
+
 // The first channel of each texel of an RGB image.
 std::vector<float> red_of(const std::vector<float>& rgb) {
     std::vector<float> red(rgb.size() / 3);
@@ -34,8 +41,7 @@ GlTexture::GlTexture(int width, int height, const std::vector<float>& rgb, const
     : width_(width), height_(height) {
     check_size(width, height);
     glCreateTextures(GL_TEXTURE_2D, 1, &id_);
-    int levels = 1;
-    while ((std::max(width, height) >> levels) > 0) ++levels;
+    const int levels = full_mip_count(width, height);
     const bool grey = channels == Channels::Grey;
     glTextureStorage2D(id_, levels, grey ? GL_R16F : GL_RGB16F, width, height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -75,8 +81,7 @@ GlTexture::GlTexture(int width, int height, const glm::vec4* rgba, GLenum filter
 GlTexture::GlTexture(int width, int height, const std::vector<std::vector<uint8_t>>& levels)
     : width_(width), height_(height) {
     check_size(width, height);
-    int count = 1;
-    while ((std::max(width, height) >> count) > 0) ++count;
+    const int count = full_mip_count(width, height);
     if (static_cast<int>(levels.size()) != count)
         throw std::invalid_argument("coverage texture " + std::to_string(width) + "x" + std::to_string(height) + ": " +
                                     std::to_string(levels.size()) + " levels given, " + std::to_string(count) +

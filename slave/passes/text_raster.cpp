@@ -44,7 +44,7 @@ struct TextFace::Handle {
 
 namespace {
 
-// The length of the UTF-8 sequence a lead byte starts (0: not a lead byte), and its payload bits.
+// The length of the UTF-8 sequence a lead byte starts (0: not a lead byte).
 int sequence_length(unsigned char b) {
     if (b < 0x80) return 1;
     if ((b & 0xE0) == 0xC0) return 2;
@@ -95,9 +95,6 @@ void blit_glyph(const FT_GlyphSlot g, int left, int top, TextRaster& out) {
     }
 }
 
-}  // namespace
-
-namespace {
 int checked_pixel_size(int pixel_size) {
     if (pixel_size < 4 || pixel_size > 512)
         throw std::invalid_argument("text raster: pixel size " + std::to_string(pixel_size) + " is not in 4..512");
