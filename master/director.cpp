@@ -54,6 +54,7 @@ double show_frame_interval_s(const ClusterConfig& cluster, const ShowScript& sho
 Director::Director(const ClusterConfig& cluster, const SceneConfig& scene, ShowScript show)
     : cluster_(cluster),
       scene_(scene),
+      clearance_(scene),
       show_(std::move(show)),
       dt_(show_frame_interval_s(cluster, show_)),
       shaper_(shaper_tuning(cluster.input)),
@@ -173,10 +174,17 @@ DirectedFrame Director::frame(uint64_t frame, const NavSample& input) {
         s.bodies = states_at(s.sim_time_s);
         const CameraPose pose = nav_.step(moved ? axes : NavAxes{}, step_dt, nav_bodies(scene_, s.bodies));
         s.camera_position_m = pose.position_m;
+        // Walking, the eye keeps its height above the relief, not above the sphere.
+        for (const BodyState& b : s.bodies)
+            if (nav_.mode() == NavMode::SurfaceWalk && b.id == nav_.anchor())
+                s.camera_position_m = clearance_.on_relief(b, s.camera_position_m);
         s.camera_orientation = pose.orientation;
         out.settings = live_settings_;
         out.input_used = moved;
     }
+    // Whatever moved it, the camera stays above the relief (terrain/terrain_clearance.hpp).
+    if (clearance_.any())
+        out.snapshot.camera_position_m = clearance_.keep_above(out.snapshot.bodies, out.snapshot.camera_position_m);
     // A fresh report (not one already counted) dates the input of this frame.
     if (input.reports != last_reports_) out.input_report_ns = input.report_ns;
     last_reports_ = input.reports;

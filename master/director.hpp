@@ -28,6 +28,7 @@
 #include "navigation/input_shaper.hpp"
 #include "navigation/navigation_model.hpp"
 #include "show_script.hpp"
+#include "terrain/terrain_clearance.hpp"
 
 namespace cupola {
 
@@ -82,6 +83,7 @@ private:
 
     const ClusterConfig& cluster_;
     const SceneConfig& scene_;
+    terrain::TerrainClearance clearance_;  // the camera stays above the relief
     ShowScript show_;
     double dt_;  // show seconds per frame
     bool live_ = false;

@@ -93,6 +93,8 @@ void march_to_geometry(AtmosphereRayStart st, float g) {
 //   SKY_MAP           (outside) the draw relights the planet's surface itself, from its map, as
 //                     the ground half does inside: nothing else is in front of the air
 //   SKY_MOON          (inside) the Moon lights the air and the ground too, from its own table
+//   SKY_TERRAIN       (with SKY_GEOMETRY) the planet is drawn as relief (terrain.frag lit it):
+//                     every pixel with geometry is marched up to it, none relit as a sphere
 
 // The Moon's light along the ray (scene units; a camera inside the air): the in-scatter from its
 // own table at its own azimuth and phase angle, and where the ray meets the ground the ground lit
@@ -176,7 +178,9 @@ void shade(vec3 v, ivec2 px) {
     float g = geo.a;
     if (g >= 0.0) {  // this planet's surface (the body pass's own hit decides), or something in front
         bool in_front;
-        if (ground) {
+        if (SKY_TERRAIN != 0) {
+            in_front = true;
+        } else if (ground) {
             vec4 hit = sphere_hit(v, u_center_dir, u_sin_alpha);
             surface = hit.w >= 0.0 && g >= sphere_hit_distance(v, u_center_dir, hit.w, u_distances_m) * (1.0 - 1e-3);
             in_front = !surface;
@@ -222,7 +226,7 @@ void shade(vec3 v, ivec2 px) {
 #endif
     bool ground = surface || atm_ray_hits_ground(u_atm, st.r_m, st.mu);
 #if SKY_GEOMETRY && !SKY_MAP
-    if (!surface && g >= 0.0 && g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)) {
+    if (g >= 0.0 && (SKY_TERRAIN != 0 || (!surface && g < st.offset_m + atm_view_ray_length(u_atm, st, -1.0)))) {
         march_to_geometry(st, g);
         return;
     }

@@ -4,13 +4,15 @@
 
 namespace cupola {
 
-FrameTargets::FrameTargets(int width, int height)
+FrameTargets::FrameTargets(int width, int height, bool depth)
     : color_a_(width, height, nullptr, GL_NEAREST),
       color_b_(width, height, nullptr, GL_NEAREST),
       geometry_(width, height, nullptr, GL_NEAREST),
       scene_({&color_a_, &geometry_}),
       a_({&color_a_}),
-      b_({&color_b_}) {}
+      b_({&color_b_}) {
+    if (depth) scene_.add_depth();
+}
 
 void FrameTargets::begin_frame(bool geometry, bool color) {
     current_ = &a_;
@@ -22,6 +24,7 @@ void FrameTargets::begin_frame(bool geometry, bool color) {
         scene_.clear(0, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         ++color_clears_;
     }
+    if (scene_.has_depth()) scene_.clear_depth();  // the terrain's
     if (!geometry) return;
     scene_.clear(1, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));  // distance < 0: no geometry
     ++geometry_clears_;

@@ -19,7 +19,8 @@ namespace cupola {
 
 class FrameTargets {
 public:
-    FrameTargets(int width, int height);
+    // depth: the scene target gets a depth buffer (the terrain's), cleared every frame.
+    FrameTargets(int width, int height, bool depth = false);
 
     // Binds the scene target and clears it: colour (0, 0, 0, 1), G-buffer distance -1 (nothing
     // drawn); colour A is the colour so far.
@@ -36,6 +37,8 @@ public:
     void drawn(const PassIo& io);
     // The colour so far, row 0 at the top (glReadPixels).
     Image read() const;
+    // The G-buffer (reflectance, distance), row 0 at the top.
+    Image read_geometry() const { return scene_.read(1); }
     // The texture holding the colour so far (GL row 0 at the bottom), for the output stage.
     const GlTexture& color() const { return current_->color(0); }
 

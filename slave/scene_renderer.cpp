@@ -51,6 +51,10 @@ std::map<uint16_t, glm::vec3> umbra_lights(const SceneConfig& scene, const Atmos
     return out;
 }
 
+bool scene_has_terrain(const SceneConfig& scene) {
+    return std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyConfig& b) { return b.terrain.present; });
+}
+
 // Every body the snapshot names must be one of the scene's.
 void check_body_ids(const Snapshot& snap, const SceneConfig& scene) {
     for (const auto& st : snap.bodies)
@@ -65,7 +69,7 @@ struct SceneRenderer::Impl {
         : scene(sc),
           frustum(ch.frustum()),
           tilt(dome_tilt_rotation(cluster.dome.tilt_deg) * channel_rotation(ch.orientation)),
-          targets(ch.width, ch.height) {
+          targets(ch.width, ch.height, scene_has_terrain(sc)) {
         psf_sigma_rad = glm::radians(scene.stars.psf_sigma_arcmin / 60.0);
         coarsest_pixel_rad = pixel_angle_rad(frustum);
         for (const auto& c : cluster.channels)
@@ -90,7 +94,7 @@ struct SceneRenderer::Impl {
         const std::vector<Star> overlay_stars = scene.overlays.present ? catalog : std::vector<Star>{};
         stars = &add(std::make_unique<StarPass>(scene.stars, std::move(catalog)));
         // The Sun and the bodies, far to near: colour and G-buffer.
-        painter = &add(std::make_unique<PainterPass>(scene, shadows));
+        painter = &add(std::make_unique<PainterPass>(scene, cluster, shadows));
         // The bodies too small for their disc alone: colour, additive, after the discs.
         planet_points = &add(std::make_unique<PlanetPointPass>());
         // The glare probe, into its own depth target: after every occluder, before what does not
@@ -406,6 +410,10 @@ Image SceneRenderer::read_back() {
 }
 
 uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
+
+Image SceneRenderer::read_geometry() const { return impl_->targets.read_geometry(); }
+
+TerrainDrawer& SceneRenderer::terrain() { return impl_->painter->terrain(); }
 
 uint64_t SceneRenderer::geometry_clears() const { return impl_->targets.geometry_clears(); }
 

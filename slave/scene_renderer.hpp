@@ -42,6 +42,8 @@ class RenderPass;
 class OverlayPass;
 class GlTexture;
 
+class TerrainDrawer;
+
 class SceneRenderer {
 public:
     SceneRenderer(const ClusterConfig& cluster, const ChannelConfig& channel, const SceneConfig& scene);
@@ -54,6 +56,11 @@ public:
     const GlTexture& color() const;
     // Reads the last draw()'s colour back (glReadPixels), row 0 at the top; counted.
     Image read_back();
+    // The last draw()'s G-buffer (rgb reflectance, a distance in metres; -1 where nothing was
+    // drawn), row 0 at the top: for tests of the geometry (the terrain's cracks).
+    Image read_geometry() const;
+    // The drawer of the bodies with terrain (its cut and tile store), for tests and the benchmark.
+    TerrainDrawer& terrain();
     // How many times a frame was read back since construction.
     uint64_t read_backs() const;
     // Frames whose G-buffer was cleared: those in which some pass reads it.

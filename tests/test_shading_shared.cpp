@@ -132,3 +132,35 @@ TEST(SharedShading, StarBoxFractionsSumToOneAndMatchTheIntegral) {
     EXPECT_NEAR(off.x, sigma * 2.0f, 1e-6);                                    // 1 / cos^2(45)
     EXPECT_NEAR(off.y, sigma * std::sqrt(2.0f), 1e-6);                         // 1 / cos(45)
 }
+
+TEST(SharedShading, TerrainLightOnSlopesAndTheGeomorphFactor) {
+    using glm::vec3;
+    const vec3 up(0, 0, 1), t(0.5f, 0.6f, 0.7f), sky(0.1f, 0.2f, 0.3f);
+    const float el = 5.0f * std::numbers::pi_v<float> / 180.0f;  // the Sun 5 degrees up, to +x
+    const vec3 sun(std::cos(el), 0.0f, std::sin(el));
+    // A horizontal plane: the direct light by the Sun's zenith cosine, the whole sky.
+    const vec3 flat = sh::terrain_illuminance(t, sky, up, up, sun);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(flat[c], t[c] * std::sin(el) + sky[c], 1e-6f);
+    // A 30-degree slope facing the low Sun gets several times the direct light; facing away, none,
+    // and the sky it sees is (1 + cos 30) / 2 of the whole.
+    const float tilt = 30.0f * std::numbers::pi_v<float> / 180.0f;
+    const vec3 toward(std::sin(tilt), 0.0f, std::cos(tilt)), away(-std::sin(tilt), 0.0f, std::cos(tilt));
+    const vec3 lit = sh::terrain_illuminance(t, vec3(0.0f), toward, up, sun);
+    EXPECT_GT(lit.x, 5.0f * t.x * std::sin(el));
+    const vec3 dark = sh::terrain_illuminance(t, sky, away, up, sun);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(dark[c], sky[c] * 0.5f * (1.0f + std::cos(tilt)), 1e-6f);
+    // A wall sees half the sky.
+    EXPECT_NEAR(sh::terrain_illuminance(vec3(0.0f), sky, vec3(0, 1, 0), up, sun).z, 0.5f * sky.z, 1e-6f);
+    // The geomorph: its own shape to 0.7 of the far distance, the parent's from it, monotone between.
+    EXPECT_EQ(sh::terrain_morph(0.0f, 1000.0f), 1.0f);
+    EXPECT_EQ(sh::terrain_morph(700.0f, 1000.0f), 1.0f);
+    EXPECT_EQ(sh::terrain_morph(1000.0f, 1000.0f), 0.0f);
+    EXPECT_EQ(sh::terrain_morph(5000.0f, 1000.0f), 0.0f);
+    EXPECT_EQ(sh::terrain_morph(5000.0f, 0.0f), 1.0f);  // no morph distance: its own shape
+    float last = 1.0f;
+    for (float d = 700.0f; d <= 1000.0f; d += 10.0f) {
+        const float m = sh::terrain_morph(d, 1000.0f);
+        EXPECT_LE(m, last);
+        last = m;
+    }
+}

@@ -185,3 +185,34 @@ TEST(TileMesh, SkirtsHangBelowTheEdgeAndTheParentShapeMatchesTheParentsMesh) {
     // within it (not planet-sized numbers that lose their metres in a float).
     for (const auto& g : v) EXPECT_LT(glm::length(g.position), 30e3f);
 }
+
+TEST(TileMesh, NormalsFollowTheSlopeAndNeighboursAgreeAlongTheirEdge) {
+    // A flat relief: every normal is the vertical.
+    ProceduralRelief flat;
+    flat.base_amplitude_m = 0.0;
+    const Relief level(kEarth_m, nullptr, flat);
+    const TileKey key{CubeFace::PosZ, 7, 40, 90};
+    const TileMesh m0 = build_tile_mesh(key, level, 8);
+    for (size_t k = 0; k < m0.normals.size(); ++k) EXPECT_GT(glm::dot(m0.normals[k], m0.directions[k]), 1.0 - 1e-12);
+    // A relief: a normal leans away from the uphill side (toward where the ground falls),
+    // and two neighbours of a level give the same normal where they share an edge.
+    const Relief relief(kEarth_m, nullptr, alpine());
+    const TileMesh a = build_tile_mesh(key, relief, 8), b = build_tile_mesh({key.face, 7, 41, 90}, relief, 8);
+    for (int j = 0; j <= 8; ++j) EXPECT_LT(glm::length(a.normals[a.index(8, j)] - b.normals[b.index(0, j)]), 1e-9) << j;
+    int leaning = 0;
+    for (int j = 1; j < 8; ++j)
+        for (int i = 1; i < 8; ++i) {
+            const glm::dvec3 rise = a.position_m(i + 1, j) - a.position_m(i - 1, j);
+            const glm::dvec3 up = a.directions[a.index(i, j)];
+            const double slope = glm::dot(rise, up);  // > 0: uphill toward +i
+            if (std::abs(slope) < 1.0) continue;
+            ++leaning;
+            const glm::dvec3 across = rise - glm::dot(rise, up) * up;  // horizontal, toward +i
+            EXPECT_LT(glm::dot(a.normals[a.index(i, j)], across) * slope, 0.0) << i << " " << j;
+        }
+    EXPECT_GT(leaning, 10);
+    // The GPU's vertices carry them, the skirt its edge vertex's.
+    const auto v = a.gpu_vertices();
+    EXPECT_LT(glm::length(glm::dvec3(v[0].normal) - a.normals[0]), 1e-6);
+    EXPECT_LT(glm::length(glm::dvec3(v[81].normal) - a.normals[0]), 1e-6);
+}

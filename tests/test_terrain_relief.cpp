@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 
+#include "support/geotiff_writer.hpp"
 #include "support/test_support.hpp"
 #include "terrain/cube_sphere.hpp"
 #include "terrain/elevation_raster.hpp"
@@ -20,39 +21,10 @@ using namespace cupola::terrain;
 namespace {
 constexpr double kDeg = 0.017453292519943295769;
 
-// A GeoTIFF written through GDAL: w x h samples over the given extent (degrees), heights from f.
-template <class F>
-std::string write_geotiff(const std::string& path, int w, int h, double lon0, double lat_top, double step_deg, F f,
-                          bool with_srs = true) {
-    GDALAllRegister();
-    GDALDriverH drv = GDALGetDriverByName("GTiff");
-    GDALDatasetH ds = GDALCreate(drv, path.c_str(), w, h, 1, GDT_Float32, nullptr);
-    double gt[6] = {lon0, step_deg, 0.0, lat_top, 0.0, -step_deg};
-    GDALSetGeoTransform(ds, gt);
-    if (with_srs)
-        GDALSetProjection(ds,
-                          "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
-                          "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433]]");
-    std::vector<float> v(static_cast<size_t>(w) * h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            v[static_cast<size_t>(y) * w + x] =
-                static_cast<float>(f(lon0 + (x + 0.5) * step_deg, lat_top - (y + 0.5) * step_deg));
-    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0), CE_None);
-    GDALClose(ds);
-    return path;
-}
-
 // A cone 2000 m high at (lon 10.25, lat 45.5), 0.5 degrees wide at its base.
 double cone(double lon, double lat) {
     const double r = std::hypot(lon - 10.25, lat - 45.5);
     return std::max(0.0, 2000.0 * (1.0 - r / 0.5));
-}
-
-// The planetocentric latitude of a WGS 84 geodetic one.
-double centric_deg(double geodetic_deg) {
-    const double f = 1.0 / 298.257223563;
-    return std::atan((1 - f) * (1 - f) * std::tan(geodetic_deg * kDeg)) / kDeg;
 }
 
 std::string expect_error(const std::string& path) {
@@ -120,7 +92,7 @@ TEST(ProceduralRelief, AFinerMeshAddsDetailACoarseOneLeavesOut) {
 TEST(ElevationRaster, AConeLiesAtItsLatitudeAndLongitudeWithinOneSample) {
     const std::string dir = test::scratch_dir("terrain_cone");
     const double step = 0.01;
-    const std::string file = write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, step, cone);
+    const std::string file = test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, step, cone);
     const ElevationRaster r(file);
     EXPECT_NEAR(r.sample_spacing_rad(), step * kDeg, 1e-12);
     EXPECT_NEAR(r.max_height_m(), 2000.0, 60.0);
@@ -134,12 +106,12 @@ TEST(ElevationRaster, AConeLiesAtItsLatitudeAndLongitudeWithinOneSample) {
         }
     // The file's latitudes are geodetic (WGS 84); Cupola's are planetocentric, 0.19 degrees less here.
     EXPECT_NEAR(best_lon, 10.25, step);
-    EXPECT_NEAR(best_lat, centric_deg(45.5), step);
-    EXPECT_GT(std::abs(45.5 - centric_deg(45.5)), 10 * step);  // the conversion matters at this scale
+    EXPECT_NEAR(best_lat, test::centric_deg(45.5), step);
+    EXPECT_GT(std::abs(45.5 - test::centric_deg(45.5)), 10 * step);  // the conversion matters at this scale
     // Its flank: within a sample's change of the cone's own height.
     for (double r_deg : {0.1, 0.2, 0.3, 0.4})
-        EXPECT_NEAR(r.height_m(centric_deg(45.5) * kDeg, (10.25 + r_deg) * kDeg).value(), cone(10.25 + r_deg, 45.5),
-                    2000.0 / 0.5 * step)
+        EXPECT_NEAR(r.height_m(test::centric_deg(45.5) * kDeg, (10.25 + r_deg) * kDeg).value(),
+                    cone(10.25 + r_deg, 45.5), 2000.0 / 0.5 * step)
             << r_deg;
     // Outside the extent: nothing (the relief falls back to procedural there).
     EXPECT_FALSE(r.height_m(45.5 * kDeg, 12.0 * kDeg).has_value());
@@ -152,8 +124,9 @@ TEST(ElevationRaster, AStepIsAtItsLongitudeAndTheReliefPutsItOnTheSphere) {
     const std::string dir = test::scratch_dir("terrain_step");
     const double step = 0.05;
     // A global raster, 0..360 east: 1000 m east of longitude 30, 0 west of it (within 0..180).
-    const std::string file = write_geotiff(dir + "/step.tif", 7200, 10, 0.0, 0.25, step,
-                                           [](double lon, double) { return lon > 30.0 && lon < 180.0 ? 1000.0 : 0.0; });
+    const std::string file = test::write_geotiff(dir + "/step.tif", 7200, 10, 0.0, 0.25, step, [](double lon, double) {
+        return lon > 30.0 && lon < 180.0 ? 1000.0 : 0.0;
+    });
     auto data = std::make_shared<ElevationRaster>(file);
     EXPECT_TRUE(data->covers_all_longitudes());
     EXPECT_NEAR(data->height_m(0.0, 29.9 * kDeg).value(), 0.0, 1e-9);
@@ -187,10 +160,10 @@ TEST(ElevationRaster, BadFilesAreNamedAndTheReliefFallsBackToProcedural) {
     }
     EXPECT_NE(expect_error(dir + "/utm.tif").find("projected, not geographic"), std::string::npos);
     // No coordinates at all: an extent that is not one of degrees.
-    write_geotiff(dir + "/metres.tif", 4, 4, 500000.0, 5000000.0, 30.0, cone, false);
+    test::write_geotiff(dir + "/metres.tif", 4, 4, 500000.0, 5000000.0, 30.0, cone, false);
     EXPECT_NE(expect_error(dir + "/metres.tif").find("is not one of degrees"), std::string::npos);
     // Heights in the wrong unit (here: millimetres) are refused, naming the sample.
-    write_geotiff(dir + "/millimetres.tif", 4, 4, 10.0, 46.0, 0.1, [](double, double) { return 2.5e6; });
+    test::write_geotiff(dir + "/millimetres.tif", 4, 4, 10.0, 46.0, 0.1, [](double, double) { return 2.5e6; });
     EXPECT_NE(expect_error(dir + "/millimetres.tif").find("sample (0, 0) is 2500000"), std::string::npos);
     // What a node does with a bad file: procedural relief, the same on every node.
     ProceduralRelief p;
@@ -204,7 +177,7 @@ TEST(ElevationRaster, AMaskedSampleHasNoHeight) {
     // GDALCreateMaskBand): masked samples have no height, they are not 0 m.
     const std::string dir = test::scratch_dir("terrain_mask");
     const std::string file =
-        write_geotiff(dir + "/masked.tif", 20, 10, 10.0, 46.0, 0.1, [](double, double) { return 500.0; });
+        test::write_geotiff(dir + "/masked.tif", 20, 10, 10.0, 46.0, 0.1, [](double, double) { return 500.0; });
     {
         GDALDatasetH ds = GDALOpen(file.c_str(), GA_Update);
         ASSERT_NE(ds, nullptr);
@@ -218,7 +191,7 @@ TEST(ElevationRaster, AMaskedSampleHasNoHeight) {
         GDALClose(ds);
     }
     const ElevationRaster r(file);
-    const double lat = centric_deg(45.5) * kDeg;
+    const double lat = test::centric_deg(45.5) * kDeg;
     EXPECT_FALSE(r.height_m(lat, 10.5 * kDeg).has_value());  // masked (west half)
     EXPECT_NEAR(r.height_m(lat, 11.5 * kDeg).value(), 500.0, 1e-9);
     EXPECT_EQ(r.min_height_m(), 500.0);
@@ -226,9 +199,9 @@ TEST(ElevationRaster, AMaskedSampleHasNoHeight) {
 
 TEST(ElevationRaster, TheBlockCacheStaysWithinItsBound) {
     const std::string dir = test::scratch_dir("terrain_cache");
-    const std::string file =
-        write_geotiff(dir + "/big.tif", 1024, 512, 0.0, 90.0, 360.0 / 1024,
-                      [](double lon, double lat) { return 100.0 * std::sin(lon * kDeg * 3) * std::cos(lat * kDeg); });
+    const std::string file = test::write_geotiff(
+        dir + "/big.tif", 1024, 512, 0.0, 90.0, 360.0 / 1024,
+        [](double lon, double lat) { return 100.0 * std::sin(lon * kDeg * 3) * std::cos(lat * kDeg); });
     ElevationRaster::Options o;
     o.block_px = 64;
     o.cache_bytes = 20 * 64 * 64 * sizeof(float);  // 20 blocks of the 128

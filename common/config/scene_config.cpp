@@ -160,6 +160,28 @@ RingConfig read_rings(const JsonReader& r, const std::string& dir, const BodyCon
     return c;
 }
 
+TerrainConfig read_terrain(const JsonReader& t, const std::string& dir) {
+    TerrainConfig c;
+    c.present = true;
+    c.error_budget_px = t.declared_number("error_budget_px");
+    c.segments = static_cast<int>(t.declared_integer("segments"));
+    if (c.segments % 2) t.fail("segments", "must be even (a tile's parent has every other vertex)");
+    if (t.has("elevation")) {
+        c.elevation = resolve_path(dir, t.declared_string("elevation"));
+        if (!fs::is_regular_file(c.elevation))
+            t.fail("elevation", "elevation file \"" + c.elevation + "\" does not exist");
+    }
+    c.procedural_wavelength_m = t.declared_number("procedural_wavelength_m");
+    c.procedural_amplitude_m = t.declared_number("procedural_amplitude_m");
+    c.procedural_gain = t.declared_number("procedural_gain");
+    c.procedural_octaves = static_cast<int>(t.declared_integer("procedural_octaves"));
+    c.seed = static_cast<uint64_t>(t.declared_integer("seed"));
+    c.cache_tiles = static_cast<size_t>(t.declared_integer("cache_tiles"));
+    c.workers = static_cast<int>(t.declared_integer("workers"));
+    t.reject_unknown_keys();
+    return c;
+}
+
 BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, std::set<std::string>& names) {
     BodyConfig c;
     c.id = id;
@@ -196,6 +218,12 @@ BodyConfig read_body(const JsonReader& b, uint16_t id, const std::string& dir, s
         if (c.kind != BodyKind::Planet) r->fail("texture", "only a planet has rings");
         if (c.atmosphere.present) r->fail("texture", "a planet with an atmosphere cannot have rings yet");
         c.rings = read_rings(*r, dir, c);
+    }
+    if (auto t = b.optional_child("terrain")) {
+        if (c.kind == BodyKind::Star) t->fail("error_budget_px", "a star has no terrain");
+        if (c.flattening > 0.0) b.fail("flattening", "a body with terrain is drawn on a sphere");
+        if (c.rings.present) t->fail("error_budget_px", "a planet with rings cannot have terrain yet");
+        c.terrain = read_terrain(*t, dir);
     }
     b.reject_unknown_keys();
     return c;

@@ -41,6 +41,23 @@ struct RingConfig {
     glm::vec3 tint{1.0f};
 };
 
+// A body's relief, drawn as a quadtree of tiles (common/terrain/) instead of a smooth sphere: heights
+// from an elevation file where it has data, band-limited procedural relief above its resolution and
+// where it has none. The detail is chosen once for the whole cluster against error_budget_px.
+struct TerrainConfig {
+    bool present = false;
+    double error_budget_px = 1.0;            // the largest screen-space error of the cut, in the dome's finest pixels
+    int segments = 32;                       // quads along a tile's side
+    std::string elevation;                   // resolved GDAL-readable file, or empty: procedural relief alone
+    double procedural_wavelength_m = 200e3;  // the longest octave
+    double procedural_amplitude_m = 1500.0;  // its amplitude
+    double procedural_gain = 0.5;            // amplitude ratio between octaves
+    int procedural_octaves = 20;
+    uint64_t seed = 1;
+    size_t cache_tiles = 3000;  // tile meshes kept in memory
+    int workers = 2;            // tile-building threads
+};
+
 struct BodyConfig {
     uint16_t id = 0;  // index in SceneConfig::bodies; the snapshot refers to bodies by it
     std::string name;
@@ -61,8 +78,9 @@ struct BodyConfig {
     // umbra_brightness unless umbra_light is given; without one, umbra_light (default black).
     std::optional<glm::vec3> umbra_light;
     double umbra_brightness = 2.5e-4;
-    double corona = 1.0;  // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
-    RingConfig rings;     // planets
+    double corona = 1.0;    // stars: corona brightness relative to Baumbach's mean K+F corona (0: none)
+    RingConfig rings;       // planets
+    TerrainConfig terrain;  // planets and moons
 };
 
 // Which bodies shadow which (Ekelin & Fernqvist 2009, section 3.3.3): in a group the parent shadows its

@@ -49,6 +49,28 @@ std::vector<size_t> edge_ring(const TileMesh& m) {
     return ring;
 }
 
+// The normals from a grid of heights one sample wider than the tile on every side.
+void fill_normals(TileMesh& m, const Relief& relief, double spacing_m) {
+    const int n = m.segments, w = n + 3;
+    std::vector<glm::dvec3> p(static_cast<size_t>(w) * w);
+    for (int j = -1; j <= n + 1; ++j)
+        for (int i = -1; i <= n + 1; ++i) {
+            const bool inside = i >= 0 && i <= n && j >= 0 && j <= n;
+            const glm::dvec3 d = inside ? m.directions[m.index(i, j)]
+                                        : m.key.direction(static_cast<double>(i) / n, static_cast<double>(j) / n);
+            const double h = inside ? m.height_m[m.index(i, j)] : relief.height_m(d, spacing_m);
+            p[static_cast<size_t>(j + 1) * w + (i + 1)] = d * (m.radius_m + h);
+        }
+    const auto at = [&](int i, int j) { return p[static_cast<size_t>(j + 1) * w + (i + 1)]; };
+    m.normals.resize(m.directions.size());
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            glm::dvec3 nv = glm::cross(at(i + 1, j) - at(i - 1, j), at(i, j + 1) - at(i, j - 1));
+            if (glm::dot(nv, m.directions[m.index(i, j)]) < 0.0) nv = -nv;
+            m.normals[m.index(i, j)] = glm::normalize(nv);
+        }
+}
+
 }  // namespace
 
 glm::dvec3 TileMesh::parent_position_m(int i, int j) const {
@@ -81,6 +103,7 @@ TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments)
             m.height_m.push_back(relief.height_m(d, spacing));
         }
     fill_parent_heights(m, relief, key.level == 0 ? spacing : tile_spacing_m(key.level - 1, segments, m.radius_m));
+    fill_normals(m, relief, spacing);
     m.centre_m = key.direction(0.5, 0.5) * m.radius_m;
     // Deep enough for the step a neighbour two levels coarser (a cut neighbour, or a stand-in)
     // can leave at the shared edge: both meshes' errors and the coarser chord's sag.
@@ -130,7 +153,7 @@ std::vector<TileMesh::GpuVertex> TileMesh::gpu_vertices() const {
                   j = static_cast<int>(k / static_cast<size_t>(segments + 1));
         const glm::dvec3 own = position_m(i, j) - directions[k] * drop_m;
         const glm::dvec3 parent = parent_position_m(i, j) - directions[k] * drop_m;
-        out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own)});
+        out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own), glm::vec3(normals[k])});
     };
     for (size_t k = 0; k < directions.size(); ++k) vertex(k, 0.0);
     for (size_t k : edge_ring(*this)) vertex(k, skirt_depth_m);

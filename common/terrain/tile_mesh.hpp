@@ -25,8 +25,12 @@ struct TileMesh {
     std::vector<glm::dvec3> directions;   // unit, (segments + 1)^2 row by row (v), then u
     std::vector<double> height_m;         // at this tile's spacing
     std::vector<double> parent_height_m;  // the parent mesh's height at the vertex
-    double skirt_depth_m = 0.0;           // how far the skirt hangs below the edge
-    double radius_m = 0.0;                // the body's reference sphere
+    // The surface's unit normal at each grid vertex (body-fixed): central differences of the
+    // relief at this tile's spacing, across the tile's edges too (one sample beyond), so two
+    // neighbours of a level agree along their shared edge.
+    std::vector<glm::dvec3> normals;
+    double skirt_depth_m = 0.0;  // how far the skirt hangs below the edge
+    double radius_m = 0.0;       // the body's reference sphere
     int vertices_per_side() const { return segments + 1; }
     // The grid point (i along u, j along v).
     size_t index(int i, int j) const { return static_cast<size_t>(j) * (segments + 1) + i; }
@@ -45,6 +49,7 @@ struct TileMesh {
     struct GpuVertex {
         glm::vec3 position;      // own shape, relative to the centre
         glm::vec3 parent_delta;  // parent shape minus own shape
+        glm::vec3 normal;        // unit, body-fixed (a skirt vertex takes its edge vertex's)
     };
     std::vector<GpuVertex> gpu_vertices() const;
 };

@@ -8,7 +8,8 @@ namespace cupola::terrain {
 
 namespace {
 size_t mesh_bytes(const TileMesh& m) {
-    return m.directions.size() * sizeof(glm::dvec3) + (m.height_m.size() + m.parent_height_m.size()) * sizeof(double);
+    return (m.directions.size() + m.normals.size()) * sizeof(glm::dvec3) +
+           (m.height_m.size() + m.parent_height_m.size()) * sizeof(double);
 }
 }  // namespace
 

@@ -47,7 +47,7 @@ public:
     struct Options {
         int workers = 2;
         size_t capacity =
-            3000;  // meshes kept (above a cut's tiles; 43.6 kB each at 32 segments), least recently drawn out first
+            3000;  // meshes kept (above a cut's tiles; 70 kB each at 32 segments), least recently drawn out first
         int segments = 32;
     };
     TileStore(std::shared_ptr<const Relief> relief, const Options& options);

@@ -38,7 +38,23 @@ void GlFramebuffer::attach() {
     gl::check("framebuffer creation");
 }
 
-GlFramebuffer::~GlFramebuffer() { glDeleteFramebuffers(1, &fbo_); }
+GlFramebuffer::~GlFramebuffer() {
+    glDeleteFramebuffers(1, &fbo_);
+    if (depth_) glDeleteRenderbuffers(1, &depth_);
+}
+
+void GlFramebuffer::add_depth() {
+    if (depth_) return;
+    glCreateRenderbuffers(1, &depth_);
+    glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, width_, height_);
+    glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+    gl::check("framebuffer depth");
+}
+
+void GlFramebuffer::clear_depth() const {
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &one);
+}
 
 void GlFramebuffer::bind() const {
     draw_buffers(static_cast<int>(colors_.size()));
@@ -58,13 +74,13 @@ void GlFramebuffer::clear(int attachment, const glm::vec4& value) const {
     glClearNamedFramebufferfv(fbo_, GL_COLOR, attachment, &value[0]);
 }
 
-Image GlFramebuffer::read() const {
+Image GlFramebuffer::read(int attachment) const {
     Image img;
     img.width = width_;
     img.height = height_;
     std::vector<float> gl_rows(static_cast<size_t>(width_) * height_ * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadBuffer(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + attachment));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, gl_rows.data());
     gl::check("glReadPixels");

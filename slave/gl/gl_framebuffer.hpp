@@ -32,8 +32,12 @@ public:
     void draw_buffers(int count) const;
     // Clears one colour attachment (and re-enables drawing into every attachment).
     void clear(int attachment, const glm::vec4& value) const;
-    // Reads colour attachment 0; row 0 of the result is the TOP row.
-    Image read() const;
+    // Adds a DEPTH_COMPONENT32F renderbuffer of its own (once), and clears it to 1.
+    void add_depth();
+    void clear_depth() const;
+    bool has_depth() const { return depth_ != 0; }
+    // Reads a colour attachment (0 by default); row 0 of the result is the TOP row.
+    Image read(int attachment = 0) const;
 
     const GlTexture& color(int attachment) const { return *colors_.at(static_cast<size_t>(attachment)); }
     int width() const { return width_; }
@@ -43,7 +47,7 @@ private:
     void attach();
     std::unique_ptr<GlTexture> owned_;
     std::vector<const GlTexture*> colors_;
-    GLuint fbo_ = 0;
+    GLuint fbo_ = 0, depth_ = 0;
     int width_ = 0, height_ = 0;
 };
 

@@ -10,6 +10,7 @@
 #include "atmosphere/solar_scale.hpp"
 #include "passes/atmosphere_uniforms.hpp"
 #include "passes/sphere_screen_bounds.hpp"
+#include "passes/terrain_drawer.hpp"
 
 namespace cupola {
 
@@ -176,7 +177,7 @@ AtmospherePass::AtmospherePass(Atmospheres atmospheres, const EclipseShadowUnifo
       bodies_(bodies) {}
 
 const GlProgram& AtmospherePass::lookup_program(int variant) {
-    auto& p = lookup_programs_[variant & 511];
+    auto& p = lookup_programs_[variant & 1023];
     if (!p) {
         const std::string defines =
             "#define SKY_OUTSIDE " + std::to_string(variant & 1) + "\n#define SKY_GEOMETRY " +
@@ -186,7 +187,8 @@ const GlProgram& AtmospherePass::lookup_program(int variant) {
                            : (variant & 32) ? 1
                                             : 0) +
             "\n#define SKY_FIRST " + std::to_string((variant >> 6) & 1) + "\n#define SKY_MAP " +
-            std::to_string((variant >> 7) & 1) + "\n#define SKY_MOON " + std::to_string((variant >> 8) & 1) + "\n";
+            std::to_string((variant >> 7) & 1) + "\n#define SKY_MOON " + std::to_string((variant >> 8) & 1) +
+            "\n#define SKY_TERRAIN " + std::to_string((variant >> 9) & 1) + "\n";
         p = std::make_unique<GlProgram>("sphere.vert", "atmosphere_lookup.frag", defines);
     }
     return *p;
@@ -214,7 +216,9 @@ int AtmospherePass::prepare(const FrameContext& frame) {
             continue;
         }
         const PlanetSun ps = planet_sun(*it.state, frame.light, atm->second->model());
-        layers_.push_back({&it, atm->second.get(), other_body_in_shell(frame, it, atm->second->top_radius_m()),
+        const bool relief = draws_terrain(frame, it);
+        layers_.push_back({&it, atm->second.get(),
+                           relief || other_body_in_shell(frame, it, atm->second->top_radius_m()), relief,
                            moon_on_air(frame.moonlight, frame.view.camera_position_m, it.state->position_m,
                                        ps.dir_world, ps.irradiance, atm->second->model())});
     }
@@ -234,6 +238,7 @@ const GlareHaloPass* AtmospherePass::halo_for(int step) const {
 
 bool AtmospherePass::draws_surface(const FrameContext& f, const FrameBody& planet) const {
     if (!draw_surfaces_ || !bodies_ || !bodies_->texture(planet.body->id)) return false;
+    if (draws_terrain(f, planet)) return false;  // the painter draws its relief
     const auto a = atmospheres_.find(planet.body->id);
     if (a == atmospheres_.end() || !a->second->model().quality().sky_view) return false;
     if (f.casters_of(planet.body->id).count > 0) return false;  // shadows: the march, or the tint
@@ -374,6 +379,7 @@ AtmosphereDrawExtras AtmospherePass::extras_for(int step) const {
     e.moon = l.moon;
     e.disc_weight = l.body->light.disc_weight;
     e.supersample = l.body->light.supersample;
+    e.terrain = l.terrain;
     if (frame_->snap)
         e.night_sky = night_sky_glow(frame_->snap->settings.night_sky_cd_m2,
                                      l.body->sphere.distance_m - l.atmosphere->model().shader_params().bottom_radius_m,
@@ -415,7 +421,8 @@ const GlProgram& AtmospherePass::choose_program(GpuAtmosphere& atm, const glm::v
             (half == 2   ? 16
              : half == 1 ? 32
                          : 0) |
-            (extras.sky_first ? 64 : 0) | (extras.surface_map && outside ? 128 : 0) | (extras.moon.on ? 256 : 0));
+            (extras.sky_first ? 64 : 0) | (extras.surface_map && outside ? 128 : 0) | (extras.moon.on ? 256 : 0) |
+            (extras.terrain ? 512 : 0));
         lookup.use();
         if (extras.halo) {
             extras.halo->texture().bind(kHalo);

@@ -90,6 +90,7 @@ struct AtmosphereDrawExtras {
     double disc_weight = 1.0;             // the planet's disc weight (passes/planet_light): the draw's times it
     int supersample = 1;                  // rays a pixel along each axis (a small disc seen from outside)
     glm::vec3 night_sky{0.0f};            // the night sky's own glow at the zenith, scene units (night_sky_glow)
+    bool terrain = false;  // the planet is drawn as relief: every pixel with geometry marches up to it (the look-up)
 };
 
 // The night sky's own glow (shaders/shared/night_sky.glsl) over a camera at height_m above the
@@ -166,7 +167,8 @@ private:
     struct Layer {
         const FrameBody* body;
         GpuAtmosphere* atmosphere;
-        bool geometry_in_air;  // another body meets this atmosphere's shell
+        bool geometry_in_air;  // another body meets this atmosphere's shell, or the planet is relief
+        bool terrain;          // the planet is drawn as relief (passes/terrain_drawer.hpp, draws_terrain)
         MoonOnAir moon;        // the Moon's light on its air this frame (atmosphere/moonlit_sky.hpp)
     };
     // The program for this draw: the look-up, or the march (set up with its own uniforms).
@@ -191,14 +193,15 @@ private:
     AtmosphereDrawExtras extras_for(int step) const;
     // The look-up program of a variant (bits: outside, geometry in the air, illustrative, glare
     // halo added, the ground half with the surface, the sky half, the sky drawn first, the surface
-    // from its map seen from outside, the Moon's light), compiled on first use.
+    // from its map seen from outside, the Moon's light, the planet drawn as relief), compiled on
+    // first use.
     const GlProgram& lookup_program(int variant);
     // The glare halo the draw of layer `step` adds: the nearest layer's, when it covers the channel.
     const GlareHaloPass* halo_for(int step) const;
     Atmospheres atmospheres_;
     const EclipseShadowUniforms& shadows_;
     GlProgram program_;
-    std::unique_ptr<GlProgram> lookup_programs_[512];
+    std::unique_ptr<GlProgram> lookup_programs_[1024];
     const GlareHaloPass* halo_;
     const BodyPass* bodies_;
     GlEmptyVertexArray vao_;

@@ -4,7 +4,8 @@
 // so no depth buffer is needed between bodies; a Sun behind a planet is covered by it and a
 // planet behind the Sun by the Sun, whatever the order of the scene's bodies. In a frame whose sky
 // is drawn first it draws after the atmosphere, each disc taking the air in front of it
-// (beyond_the_air.hpp), into the colour alone.
+// (beyond_the_air.hpp), into the colour alone. A body with terrain near the camera is drawn as
+// relief (terrain_drawer.hpp), with a depth test within it.
 #include <string>
 
 #include "config/scene_config.hpp"
@@ -12,6 +13,7 @@
 #include "passes/eclipse_shadow_uniforms.hpp"
 #include "passes/beyond_the_air.hpp"
 #include "passes/sun_pass.hpp"
+#include "passes/terrain_drawer.hpp"
 
 namespace cupola {
 
@@ -19,7 +21,7 @@ class AtmospherePass;
 
 class PainterPass : public BeyondTheAirPass {
 public:
-    PainterPass(const SceneConfig& scene, const EclipseShadowUniforms& shadows);
+    PainterPass(const SceneConfig& scene, const ClusterConfig& cluster, const EclipseShadowUniforms& shadows);
 
     std::string name() const override { return "sun and bodies"; }
     PassIo io() const override { return {.writes_color = true, .writes_geometry = true}; }
@@ -29,6 +31,9 @@ public:
     // The planets' and moons' drawer, which the glare probe draws the occluders with.
     BodyPass& bodies() { return bodies_; }
     const BodyPass& bodies() const { return bodies_; }
+    // The bodies drawn as relief (draws_terrain), instead of their sphere.
+    TerrainDrawer& terrain() { return terrain_; }
+    const TerrainDrawer& terrain() const { return terrain_; }
     // Bodies whose surface the atmosphere pass draws itself this frame (AtmospherePass::
     // draws_surface) are not drawn here. Set once the atmosphere pass exists (or never).
     void set_surface_drawer(const AtmospherePass* atmosphere) { atmosphere_ = atmosphere; }
@@ -37,6 +42,8 @@ private:
     const EclipseShadowUniforms& shadows_;
     SunPass sun_;
     BodyPass bodies_;
+    TerrainDrawer terrain_;
+    void draw_terrain(const FrameBody& body);
     const FrameContext* frame_ = nullptr;
     const AtmospherePass* atmosphere_ = nullptr;
     bool after_sky_ = false;
