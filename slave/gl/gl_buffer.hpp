@@ -18,6 +18,9 @@ public:
     void upload(const std::vector<float>& data);
     // Replaces the index buffer (made on first use) that indexed draws of this array read.
     void upload_indices(const std::vector<GLuint>& indices);
+    // Indexed draws read another array's index buffer (not owned; it must outlive this one's
+    // draws): arrays with the same triangles share one.
+    void share_indices(const GlVertexBuffer& owner) { glVertexArrayElementBuffer(vao_, owner.ebo_); }
     int vertex_count() const { return count_; }
     void bind() const { glBindVertexArray(vao_); }
     // Takes one more attribute, `location`, from another buffer (not owned): `components` floats

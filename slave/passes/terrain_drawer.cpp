@@ -75,13 +75,17 @@ const GlVertexBuffer& TerrainDrawer::gpu_tile(Body& b, const terrain::TileMesh& 
         b.gpu.erase(b.recent.back());
         b.recent.pop_back();
     }
+    if (!b.indices) {  // every tile of the body has the same triangles: one index buffer for all
+        b.indices = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3});
+        b.indices->upload_indices(mesh.triangle_indices());
+    }
     auto buffer = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3});
     std::vector<float> data;
     for (const auto& v : mesh.gpu_vertices())
         data.insert(data.end(), {v.position.x, v.position.y, v.position.z, v.parent_delta.x, v.parent_delta.y,
                                  v.parent_delta.z, v.normal.x, v.normal.y, v.normal.z});
     buffer->upload(data);
-    buffer->upload_indices(mesh.triangle_indices());
+    buffer->share_indices(*b.indices);
     b.recent.push_front(id);
     GpuTile& t = b.gpu[id];
     t.buffer = std::move(buffer);
