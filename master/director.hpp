@@ -69,6 +69,9 @@ private:
     void take_over(uint64_t frame, const char* why);
     // The steps of apply() for the commands that take more than a line or two.
     std::string apply_goto(const ControlCommand& cmd, uint64_t next);
+    // After a goto to body id, `height_m` above the ground: re-plans the flight to land that high
+    // above the relief (or sphere) where it lands, at the landing frame's time.
+    void land_above_ground(uint16_t id, double height_m, double seconds, uint64_t next);
     std::string apply_mode(const ControlCommand& cmd, uint64_t next);
     std::string apply_play(const ControlCommand& cmd, uint64_t next);
     void apply_setting(const ControlCommand& cmd);  // "set": the overrides of the show

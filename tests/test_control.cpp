@@ -79,6 +79,13 @@ TEST(ControlCommand, ParsesTheLanguage) {
     c = parse_control_line("  GOTO earth 2.5 ");
     EXPECT_EQ(c.verb, ControlVerb::Goto);
     EXPECT_DOUBLE_EQ(*c.seconds, 2.5);
+    EXPECT_FALSE(c.height_m);
+    c = parse_control_line("goto Earth 3 height 1500");
+    EXPECT_DOUBLE_EQ(*c.seconds, 3.0);
+    EXPECT_DOUBLE_EQ(*c.height_m, 1500.0);
+    c = parse_control_line("goto Earth HEIGHT 20");
+    EXPECT_FALSE(c.seconds);
+    EXPECT_DOUBLE_EQ(*c.height_m, 20.0);
     c = parse_control_line("time rate -3600");
     EXPECT_EQ(c.verb, ControlVerb::TimeRate);
     EXPECT_DOUBLE_EQ(c.rate, -3600.0);
@@ -120,6 +127,10 @@ TEST(ControlCommand, ErrorsSayWhatWasWrong) {
     EXPECT_NE(parse_error("time warp 3").find("\"warp\""), std::string::npos);
     EXPECT_NE(parse_error("goto").find("usage: goto"), std::string::npos);
     EXPECT_NE(parse_error("goto moon -1").find("0..600"), std::string::npos);
+    EXPECT_NE(parse_error("goto moon 3 high 500").find("\"high\""), std::string::npos);
+    EXPECT_NE(parse_error("goto moon height").find("\"height\""), std::string::npos);
+    EXPECT_NE(parse_error("goto moon height 1").find("2 .. 1e9 m"), std::string::npos);
+    EXPECT_NE(parse_error("goto moon height tall").find("\"tall\""), std::string::npos);
     EXPECT_NE(parse_error("mode swim").find("\"swim\""), std::string::npos);
     EXPECT_NE(parse_error("set shadow_mode sharp").find("\"sharp\""), std::string::npos);
     EXPECT_NE(parse_error("set exposure 0").find("[1e-12, 1e6]"), std::string::npos);

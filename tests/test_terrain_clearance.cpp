@@ -1,7 +1,8 @@
 // The master keeps the camera above the relief (common/terrain/terrain_clearance): a camera under
 // the ground, or closer to it than the clearance, is lifted along the vertical to the clearance;
 // one above it, or far away, is left exactly where it was; bodies without terrain are ignored.
-// Walking (the director's live navigation), the eye keeps its height above the relief.
+// Walking (the director's live navigation), the eye keeps its height above the relief, and a goto
+// with a height lands that high above it.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -84,4 +85,61 @@ TEST(TerrainClearance, WalkingTheEyeKeepsItsHeightAboveTheRelief) {
     EXPECT_GT(eye, 0.5);
     EXPECT_LT(eye, 10.0);
     EXPECT_GT(highest - lowest, 1.0) << "the walk must cross some relief";
+}
+
+namespace {
+
+struct TerrainDirector {
+    ClusterConfig cluster = load_cluster_config(test::source_path("configs/dome-4ch.json"));
+    SceneConfig scene;
+    uint16_t earth = 0;
+    TerrainDirector() {
+        cluster.frame_rate_hz = 0;
+        scene = load_scene_config(cluster.scene_file);
+        earth = scene.find("earth")->id;
+        BodyConfig& e = scene.bodies[earth];
+        e.terrain.present = true;
+        e.terrain.procedural_wavelength_m = 40e3;
+        e.terrain.procedural_amplitude_m = 3000.0;
+    }
+    // The camera's height above the ground (relief) in a frame.
+    double height(const Snapshot& s, const terrain::TerrainClearance& ground) const {
+        const BodyState& e = s.bodies[earth];
+        const double over_sphere = glm::length(s.camera_position_m - e.position_m) - scene.bodies[earth].radius_m;
+        return over_sphere - ground.ground_height_m(e, s.camera_position_m);
+    }
+};
+
+}  // namespace
+
+TEST(TerrainClearance, GotoWithAHeightLandsThatHighAboveTheRelief) {
+    TerrainDirector t;
+    const ShowScript show = ShowScript::load(t.cluster.show_file, t.scene);
+    const terrain::TerrainClearance ground(t.scene);
+    for (const char* rate : {"0", "1", "600"}) {
+        Director director(t.cluster, t.scene, show);
+        director.apply(parse_control_line(std::string("time rate ") + rate), 1);
+        uint64_t f = 1;
+        struct Goto {
+            int seconds;
+            double height_m;
+        };
+        for (const Goto go : {Goto{0, 500.0}, Goto{2, 40.0}, Goto{1, 2500.0}}) {
+            const std::string line =
+                "goto earth " + std::to_string(go.seconds) + " height " + std::to_string(go.height_m);
+            director.apply(parse_control_line(line), f);
+            const uint64_t landing = f + static_cast<uint64_t>(std::llround(go.seconds / director.frame_interval_s()));
+            Snapshot s;
+            for (; f <= landing; ++f) s = director.frame(f, NavSample{}).snapshot;
+            // A third of a percent: what the ground does in one frame under the camera at 600x.
+            EXPECT_NEAR(t.height(s, ground), go.height_m, 0.003 * go.height_m + 1e-3)
+                << line << " at time rate " << rate;
+        }
+    }
+    // Without a height, goto keeps to four radii from the centre, whatever the relief.
+    Director director(t.cluster, t.scene, show);
+    director.apply(parse_control_line("goto earth 0"), 1);
+    const Snapshot s = director.frame(1, NavSample{}).snapshot;
+    EXPECT_NEAR(glm::length(s.camera_position_m - s.bodies[t.earth].position_m), 4.0 * t.scene.bodies[t.earth].radius_m,
+                1e-3);
 }

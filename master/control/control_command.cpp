@@ -40,7 +40,7 @@ std::string lower_case(std::string s) {
 
 const std::string& control_help() {
     static const std::string text =
-        "commands: goto <body> [seconds] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
+        "commands: goto <body> [seconds] [height <m>] | mode orbit|fly|walk [body] | time rate <x> | time set <UTC> | "
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
         "set star_limit <mag>|show | set twinkle on|off|forced|show | set sky_brightness <mag>|show | "
         "set bortle <1-9>|show | show|hide <overlay> | show overlays show | pattern grid|white|black|off|show | "
@@ -67,14 +67,26 @@ Words split_control_line(const std::string& line) {
     return w;
 }
 
+// goto <body> [seconds] [height <m>]: the words after the body are the seconds, then "height" and
+// the height above the ground to land at.
 void parse_goto(const Words& w, ControlCommand& c) {
-    expect_count(w, 2, 3, "goto <body> [seconds]");
+    const char* usage = "goto <body> [seconds] [height <m>]";
+    expect_count(w, 2, 5, usage);
     c.verb = ControlVerb::Goto;
     c.body = w[1];
-    if (w.size() == 3) {
-        c.seconds = parse_number(w[2], "goto seconds");
-        if (*c.seconds < 0.0 || *c.seconds > 600.0) throw ControlError("goto seconds: must be 0..600, not " + w[2]);
+    size_t k = 2;
+    if (k < w.size() && lower_case(w[k]) != "height") {
+        c.seconds = parse_number(w[k], "goto seconds");
+        if (*c.seconds < 0.0 || *c.seconds > 600.0) throw ControlError("goto seconds: must be 0..600, not " + w[k]);
+        ++k;
     }
+    if (k == w.size()) return;
+    if (lower_case(w[k]) != "height" || k + 2 != w.size())
+        throw ControlError(std::string("goto: \"") + w[k] +
+                           "\" where \"height <m>\" or the end belongs; usage: " + usage);
+    c.height_m = parse_number(w[k + 1], "goto height");
+    if (*c.height_m < 2.0 || *c.height_m > 1e9)
+        throw ControlError("goto height: must be 2 .. 1e9 m above the ground, not " + w[k + 1]);
 }
 
 void parse_mode(const Words& w, ControlCommand& c) {

@@ -56,6 +56,7 @@ struct ControlCommand {
     ControlVerb verb = ControlVerb::Help;
     std::string body;                   // goto, mode (optional): as typed
     std::optional<double> seconds;      // goto: flight duration
+    std::optional<double> height_m;     // goto: land this high above the ground (relief or sphere)
     std::string nav_mode;               // mode: orbit | fly | walk
     double rate = 1.0;                  // time rate
     double sim_time_s = 0.0;            // time set: seconds since J2000 TT

@@ -393,8 +393,10 @@ void NavigationModel::set_mode(NavMode m, const std::vector<NavBody>& bodies, st
     }
 }
 
+glm::dvec3 NavigationModel::landing_direction() const { return glm::normalize(orientation_ * kZ); }
+
 void NavigationModel::fly_to(uint16_t target, double duration_s, const std::vector<NavBody>& bodies,
-                             double distance_radii) {
+                             double distance_radii, double min_distance_m) {
     const NavBody* found = nullptr;
     for (const NavBody& b : bodies)
         if (b.id == target) found = &b;
@@ -404,7 +406,7 @@ void NavigationModel::fly_to(uint16_t target, double duration_s, const std::vect
     const Relative r = relative_pose(bodies);
     const glm::dvec3 from_target = r.offset - (t.position_m - anchor_body(bodies).position_m);
     const glm::dquat q0 = clean_orientation(r.orientation);
-    const double d_min = t.radius_m + tuning_.min_altitude_m;
+    const double d_min = min_distance_m > 0.0 ? min_distance_m : t.radius_m + tuning_.min_altitude_m;
     double d0 = glm::length(from_target);
     const glm::dvec3 dir0 = (d0 > 0.0 && std::isfinite(d0)) ? from_target / d0 : q0 * kZ;
     d0 = std::clamp(std::isfinite(d0) ? d0 : d_min, d_min, kMaxDistance_m);

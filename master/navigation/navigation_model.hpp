@@ -77,8 +77,9 @@ public:
     void set_mode(NavMode m, const std::vector<NavBody>& bodies, std::optional<uint16_t> target = std::nullopt);
 
     // An eased flight of duration_s seconds (of step() time) ending in Orbit around `target` at
-    // distance_radii x its radius from its centre (at least min_altitude_m above the surface),
-    // looking at it. Seen from the target, the distance is interpolated in log space and the
+    // distance_radii x its radius from its centre (at least min_altitude_m above the surface, or
+    // min_distance_m from the centre when that is given: a relief lower than the sphere), looking
+    // at it. Seen from the target, the distance is interpolated in log space and the
     // direction by slerp, so the distance falls (or rises) monotonically and the path never
     // enters the target. When another body blocks the straight way in, the end direction is
     // turned away from it (by the smallest of a few angles that clears it, turning before closing
@@ -87,7 +88,11 @@ public:
     // The orientation slerps to the final look-at. Input is ignored while flying(); mode() is
     // already Orbit and anchor() the target. duration_s <= 0 jumps there at once.
     // Throws std::invalid_argument when `target` names no body in `bodies`.
-    void fly_to(uint16_t target, double duration_s, const std::vector<NavBody>& bodies, double distance_radii = 4.0);
+    void fly_to(uint16_t target, double duration_s, const std::vector<NavBody>& bodies, double distance_radii = 4.0,
+                double min_distance_m = 0.0);
+    // Where the camera is, or lands when it is flying, seen from the anchor's centre (unit, world
+    // axes): in Orbit, orientation * +Z.
+    glm::dvec3 landing_direction() const;
 
     // Advance by dt_s seconds of wall time with shaped input; `bodies` are at the NEW simulation
     // time. dt_s <= 0 or non-finite moves nothing (but the camera still rides with its anchor);
