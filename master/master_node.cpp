@@ -89,6 +89,8 @@ void apply_exposure(Snapshot& snap, const ShowSettings& settings, const ClusterC
     // Night vision belongs to the eye's adaptation: only under the automatic exposure.
     const bool night = d.tone_white > 0.0 && d.adapted_cd_m2 > 0.0 && cluster.output.auto_exposure.night_vision;
     snap.settings.flags = night ? (snap.settings.flags | kNightVisionBit) : (snap.settings.flags & ~kNightVisionBit);
+    const bool blur = night && cluster.output.auto_exposure.acuity_blur;
+    snap.settings.flags = blur ? (snap.settings.flags | kAcuityBlurBit) : (snap.settings.flags & ~kAcuityBlurBit);
 }
 
 }  // namespace

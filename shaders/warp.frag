@@ -1,7 +1,8 @@
 #version 450 core
 // The projector pass (slave/output/warp_pass.hpp says why it is a per-pixel lookup and how the
 // footprint filter works): raster pixel -> bilinear grid lookup -> content (u, v), filtered over
-// the pixel's footprint -> exposure -> display curve (shared/tone_curve.glsl) -> gamut map, blend
+// the pixel's footprint (and at night blurred by the eye's acuity) -> exposure -> night vision ->
+// display curve (shared/tone_curve.glsl) -> gamut map, blend
 // and black lift -> encode (shared/projector_blend.glsl).
 // Conventions: common/calibration/projector_warp.hpp (raster y from the top, grid in fill layout,
 // content v up).
@@ -14,6 +15,9 @@ uniform vec2 u_content_size;  // content width, height in texels
 uniform float u_exposure;
 uniform float u_tone_white;   // the display curve's white (shared/tone_curve.glsl); 0: none
 uniform float u_night_adapted_cd_m2;  // the eye's adaptation for night vision; 0: none
+uniform float u_acuity_sigma_rad;     // the eye's acuity blur (shared/night_acuity.glsl); 0: none
+uniform vec4 u_content_tan;           // the content frustum's tangents: left, right, down, up (outward)
+uniform mat3 u_content_to_dome;       // the content's camera frame -> the dome frame
 uniform float u_gamma;
 uniform int u_encode;         // PROJECTOR_ENCODE_*
 uniform int u_max_taps;       // footprint box filter: most taps per axis (1: one tap)
@@ -77,6 +81,38 @@ vec3 filtered_content(WarpPoint w) {
     return sum / float(n * n);
 }
 
+// The content's perspective projection, as common/projection/channel_frustum.cpp: (u, v), v up,
+// to and from dome directions.
+vec3 content_direction(vec2 uv) {
+    vec3 c = vec3(-u_content_tan.x + uv.x * (u_content_tan.x + u_content_tan.y),
+                  -u_content_tan.z + uv.y * (u_content_tan.z + u_content_tan.w), -1.0);
+    return normalize(u_content_to_dome * c);
+}
+
+vec2 content_uv(vec3 dome_dir) {
+    vec3 c = transpose(u_content_to_dome) * dome_dir;
+    if (c.z >= 0.0) return vec2(-1.0);
+    vec2 t = c.xy / -c.z;
+    return (t + u_content_tan.xz) / (u_content_tan.xz + u_content_tan.yw);
+}
+
+// The eye's acuity blur: the weighted mean of the taps around the pixel's direction that fall on
+// the content (common/dome/acuity_blur.hpp, the same rule on the CPU).
+vec3 acuity_blurred_content(WarpPoint w) {
+    vec3 d = content_direction(w.uv);
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (int k = 0; k < ACUITY_TAPS; ++k) {
+        WarpPoint t = w;
+        t.uv = content_uv(acuity_tap_direction(d, u_acuity_sigma_rad, k));
+        if (any(lessThan(t.uv, vec2(0.0))) || any(greaterThan(t.uv, vec2(1.0)))) continue;
+        float wk = acuity_tap(k).z;
+        sum += wk * filtered_content(t);
+        weight += wk;
+    }
+    return weight > 0.0 ? sum / weight : filtered_content(w);
+}
+
 void main() {
     vec2 p = vec2(gl_FragCoord.x, u_raster.y - gl_FragCoord.y);
     WarpPoint w = warp_lookup(p);
@@ -84,7 +120,8 @@ void main() {
     float alpha = textureLod(u_alpha, t, 0.0).r;
     float beta = textureLod(u_beta, t, 0.0).r;
     // Not shown: black content, still lifted to the projector's black level like every pixel.
-    vec3 exposed = night_vision(filtered_content(w) * u_exposure, u_exposure, u_night_adapted_cd_m2);
+    vec3 seen = u_acuity_sigma_rad > 0.0 ? acuity_blurred_content(w) : filtered_content(w);
+    vec3 exposed = night_vision(seen * u_exposure, u_exposure, u_night_adapted_cd_m2);
     vec3 content = w.shown ? tone_curve(exposed, u_tone_white) : vec3(0.0);
     vec3 c = projector_blend(content, alpha, w.intensity, beta);
     out_linear = vec4(c, 1.0);

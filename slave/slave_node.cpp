@@ -110,7 +110,7 @@ struct SlaveNode::Loop {
           gl(channel, n.options_.egl_device, warp),
           renderer(n.cluster_, channel, scene),
           output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, warp, channel.width,
-                 channel.height),
+                 channel.height, channel.frustum()),
           session(new_session_nonce()),
           wire(open_slave_endpoint(n.cluster_, channel, key, session)),
           master(master_report_address(n.cluster_)),
@@ -212,6 +212,7 @@ void SlaveNode::Loop::render_and_report(const RenderJob& job, uint64_t received_
     meta.tone_white = snap.settings.tone_white;
     meta.adapted_cd_m2 = snap.settings.adapted_cd_m2;
     meta.night_vision = night_vision_of(snap.settings.flags);
+    meta.acuity_blur = acuity_blur_of(snap.settings.flags);
     // The warp pass and every sink's take, then settle: "ready N" goes out only once frame N's
     // files are on disk. The master counts a frame done when every channel reported it, and a
     // channel that restarts renders the master's current frame, not older ones (master/session/

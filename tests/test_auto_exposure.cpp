@@ -85,7 +85,15 @@ TEST(AutoExposure, NightVisionTravelsInTheSnapshotOnlyWithTheEyesAdaptation) {
     const AutoExposure night(f.cluster, f.scene);
     const Snapshot on = make_frame_snapshot(f.cluster, f.scene, f.show, 12, &night);
     EXPECT_TRUE(night_vision_of(on.settings.flags));
+    EXPECT_FALSE(acuity_blur_of(on.settings.flags));
     EXPECT_GT(on.settings.adapted_cd_m2, 0.0f);
+    f.cluster.output.auto_exposure.acuity_blur = true;  // the eye's acuity rides with its night vision
+    const AutoExposure blur(f.cluster, f.scene);
+    EXPECT_TRUE(acuity_blur_of(make_frame_snapshot(f.cluster, f.scene, f.show, 12, &blur).settings.flags));
+    f.cluster.output.auto_exposure.night_vision = false;
+    const AutoExposure blur_alone(f.cluster, f.scene);
+    EXPECT_FALSE(acuity_blur_of(make_frame_snapshot(f.cluster, f.scene, f.show, 12, &blur_alone).settings.flags));
+    f.cluster.output.auto_exposure.night_vision = true;
     f.cluster.output.auto_exposure.enabled = false;
     const AutoExposure fixed(f.cluster, f.scene);
     EXPECT_FALSE(night_vision_of(make_frame_snapshot(f.cluster, f.scene, f.show, 12, &fixed).settings.flags));

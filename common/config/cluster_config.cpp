@@ -294,6 +294,7 @@ AutoExposureConfig read_auto_exposure(const JsonReader& a) {
     ae.light_adaptation_s = a.declared_number("light_adaptation_s");
     ae.dark_adaptation_s = a.declared_number("dark_adaptation_s");
     ae.night_vision = a.declared_boolean("night_vision");
+    ae.acuity_blur = a.declared_boolean("acuity_blur");
     ae.min_exposure = a.declared_number("min_exposure");
     ae.max_exposure = a.declared_number("max_exposure");
     if (ae.min_exposure > ae.max_exposure)

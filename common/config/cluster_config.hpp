@@ -51,6 +51,7 @@ struct AutoExposureConfig {
     double light_adaptation_s = 1.0;     // time constant toward a brighter view
     double dark_adaptation_s = 120.0;    // time constant toward a darker view
     bool night_vision = false;           // colour fades and turns blue at night (shaders/shared/night_vision.glsl)
+    bool acuity_blur = false;            // with night_vision: detail blurs as acuity falls (night_acuity.glsl)
     double min_exposure = 1e-9;
     double max_exposure = 1e3;  // reached on a black (night, no-atmosphere) sky
 };

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "calibration/channel_warp.hpp"
+#include "dome/acuity_blur.hpp"
 #include "dome/projector_frame_stitcher.hpp"
 #include "projection/fisheye.hpp"
 
@@ -337,10 +338,25 @@ std::vector<std::string> write_dome_frame(const ClusterConfig& config, const std
     out_meta.tone_white = first.tone_white;  // the snapshot's, as the exposure: every channel's
     out_meta.adapted_cd_m2 = first.adapted_cd_m2;
     out_meta.night_vision = first.night_vision;
+    out_meta.acuity_blur = first.acuity_blur;
     // The frame's own exposure (the master's auto exposure varies it per frame; all channels
     // share it), else the configured one.
     const double exposure = first.exposure > 0.0 ? first.exposure : config.output.exposure;
-    return write_frame(out_dir, dome, out_meta, formats, exposure);
+    // The eye's acuity at night blurs what the PNG shows; the EXR stays the physical sky.
+    const double sigma_rad = out_meta.acuity_sigma_rad();
+    const double rad_per_px = glm::radians(config.dome.fov_deg) / dome.width;
+    if (!acuity_blur_needed(sigma_rad, rad_per_px)) return write_frame(out_dir, dome, out_meta, formats, exposure);
+    std::vector<std::string> written;
+    auto write = [&](const Image& image, const std::string& format) {
+        for (auto& p : write_frame(out_dir, image, out_meta, {format}, exposure)) written.push_back(std::move(p));
+    };
+    for (const std::string& f : formats) {
+        if (f == "png")
+            write(acuity_blurred(dome, DomemasterRays(config.dome.fov_deg, dome.width), sigma_rad), f);
+        else
+            write(dome, f);
+    }
+    return written;
 }
 
 // Every calibrated channel's projector warp; a projector frame is stitched from its EXR, the light

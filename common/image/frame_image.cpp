@@ -34,6 +34,7 @@ constexpr const char* kAttrRenderer = "cupola:renderer";
 constexpr const char* kAttrExposure = "cupola:exposure";
 constexpr const char* kAttrToneWhite = "cupola:tone_white";
 constexpr const char* kAttrNightVision = "cupola:night_vision";
+constexpr const char* kAttrAcuityBlur = "cupola:acuity_blur";
 constexpr const char* kAttrAdapted = "cupola:adapted_cd_m2";
 
 std::string fmt_double(double v) {
@@ -86,6 +87,7 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         spec.attribute(kAttrToneWhite, fmt_double(meta.tone_white));
         spec.attribute(kAttrAdapted, fmt_double(meta.adapted_cd_m2));
         spec.attribute(kAttrNightVision, meta.night_vision ? "1" : "0");
+        spec.attribute(kAttrAcuityBlur, meta.acuity_blur ? "1" : "0");
     } else {
         spec.attribute(kAttrChannel, meta.channel_id);
         if (meta.frame <= static_cast<uint64_t>(std::numeric_limits<int>::max()))
@@ -96,6 +98,7 @@ void put_metadata(OIIO::ImageSpec& spec, const FrameMetadata& meta, double expos
         spec.attribute(kAttrToneWhite, static_cast<float>(meta.tone_white));
         spec.attribute(kAttrAdapted, static_cast<float>(meta.adapted_cd_m2));
         spec.attribute(kAttrNightVision, meta.night_vision ? 1 : 0);
+        spec.attribute(kAttrAcuityBlur, meta.acuity_blur ? 1 : 0);
     }
     spec.attribute(kAttrChannelName, meta.channel_name);
     spec.attribute(kAttrSimTime, fmt_double(meta.sim_time_s));
@@ -312,6 +315,8 @@ Image read_impl(const std::string& path, FrameMetadata* meta, bool undo_exposure
         get_double_attr(spec, kAttrAdapted, m.adapted_cd_m2);
         long long night = 0;
         m.night_vision = get_int64_attr(spec, kAttrNightVision, night) && night == 1;
+        long long blur = 0;
+        m.acuity_blur = get_int64_attr(spec, kAttrAcuityBlur, blur) && blur == 1;
         *meta = std::move(m);
     }
     return img;
@@ -387,6 +392,10 @@ glm::vec3 nan_as_zero(const glm::vec3& c) {
     return {std::isnan(c.x) ? 0.0f : c.x, std::isnan(c.y) ? 0.0f : c.y, std::isnan(c.z) ? 0.0f : c.z};
 }
 }  // namespace
+
+double FrameMetadata::acuity_sigma_rad() const {
+    return acuity_blur ? shading::acuity_blur_sigma_rad(static_cast<float>(night_adapted_cd_m2())) : 0.0;
+}
 
 glm::vec3 display_color(const glm::vec3& linear, double tone_white) {
     return shading::gamut_map_to_unit_cube(shading::tone_curve(nan_as_zero(linear), static_cast<float>(tone_white)));

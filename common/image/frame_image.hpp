@@ -53,6 +53,11 @@ struct FrameMetadata {
     bool night_vision = false;
     // The adaptation night vision works at: adapted_cd_m2 when it is on, 0 (off) otherwise.
     double night_adapted_cd_m2() const { return night_vision ? adapted_cd_m2 : 0.0; }
+    // Whether the display also blurs the sky by the eye's acuity at night (shaders/shared/
+    // night_acuity.glsl), recorded as cupola:acuity_blur; and that blur's standard deviation in
+    // radians (0: none, also when night vision is off).
+    bool acuity_blur = false;
+    double acuity_sigma_rad() const;
 };
 
 // File name of a frame: "frame_000042.png" (six digits, more if needed).

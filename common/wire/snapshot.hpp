@@ -33,8 +33,8 @@ enum class AlignmentPattern : uint8_t {
 struct RenderSettings {
     float exposure = 1.0f;
     float star_magnitude_limit = 6.5f;
-    uint32_t flags = 0;  // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern; 5..6: twinkle;
-                         // 7: night vision)
+    uint32_t flags = 0;  // effect switches (bits 0..2: eclipse shadow mode; 3..4: alignment pattern; 5..6: twinkle; 7:
+                         // night vision; 8: acuity blur; 7: night vision)
     float glare_phase = 0.0f;  // glare animation phase: one value for the whole cluster
     // The display curve's white: the exposed luminance shown as white (shaders/shared/tone_curve.glsl);
     // 0: no curve (a fixed exposure). And the eye's adapted luminance, cd/m^2 (0: not metered).
@@ -124,6 +124,10 @@ inline uint32_t with_twinkle_mode(uint32_t flags, TwinkleMode m) {
 // snapshot's adapted luminance (shaders/shared/night_vision.glsl).
 constexpr uint32_t kNightVisionBit = 0x1u << 7;
 inline bool night_vision_of(uint32_t flags) { return (flags & kNightVisionBit) != 0; }
+// RenderSettings::flags bit 8: with night vision, the display transform also blurs the sky as the
+// eye's acuity falls at the adapted luminance (shaders/shared/night_acuity.glsl).
+constexpr uint32_t kAcuityBlurBit = 0x1u << 8;
+inline bool acuity_blur_of(uint32_t flags) { return (flags & kAcuityBlurBit) != 0; }
 
 // "off", "on", "forced" (in TwinkleMode's order).
 const std::vector<std::string>& twinkle_mode_names();

@@ -10,7 +10,8 @@
 namespace cupola {
 
 ProjectorOutput::ProjectorOutput(OutputSurface& surface, const SinkConfig& sinks, FilesOutput files,
-                                 std::optional<ProjectorWarp> warp, int content_width, int content_height) {
+                                 std::optional<ProjectorWarp> warp, int content_width, int content_height,
+                                 std::optional<ChannelFrustum> content_view) {
     for (const std::string& name : sinks.sinks) {
         if (name == "files") {
             auto f = std::make_unique<FilesSink>(files.dir, files.formats);
@@ -27,13 +28,17 @@ ProjectorOutput::ProjectorOutput(OutputSurface& surface, const SinkConfig& sinks
         }
         live_ = live_ || sinks_.back()->live();
     }
-    if (warp || live_) warp_ = std::make_unique<WarpPass>(std::move(warp), content_width, content_height);
+    WarpOptions options;
+    options.content_view = std::move(content_view);
+    if (warp || live_) warp_ = std::make_unique<WarpPass>(std::move(warp), content_width, content_height, options);
 }
 
 ProjectorOutput::~ProjectorOutput() { finish(); }
 
 double ProjectorOutput::take(SceneRenderer& channel, const FrameMetadata& meta, double exposure) {
-    if (warp_) warp_->draw(channel.color().id(), exposure, meta.tone_white, meta.night_adapted_cd_m2());
+    if (warp_)
+        warp_->draw(channel.color().id(), exposure, meta.tone_white, meta.night_adapted_cd_m2(),
+                    meta.acuity_sigma_rad());
     const ProjectorFrame frame(channel, warp_.get(), meta, exposure, read_backs_);
     for (const auto& sink : sinks_) sink->take(frame);
     return files_ ? files_->last_wait_ms() : 0.0;

@@ -30,9 +30,11 @@ struct FilesOutput {
 class ProjectorOutput : public FramePresenter {
 public:
     // The sinks named in `sinks`, on `surface` (whose context is current); files go to `files`.
-    // content_*: the channel render's size; warp: the projector's calibration, if any.
+    // content_*: the channel render's size; warp: the projector's calibration, if any;
+    // content_view: the channel's frustum, for the eye's acuity blur at night (none: no blur).
     ProjectorOutput(OutputSurface& surface, const SinkConfig& sinks, FilesOutput files,
-                    std::optional<ProjectorWarp> warp, int content_width, int content_height);
+                    std::optional<ProjectorWarp> warp, int content_width, int content_height,
+                    std::optional<ChannelFrustum> content_view = std::nullopt);
     ~ProjectorOutput() override;
 
     // Phase 1 for the frame the renderer last drew. Returns the milliseconds the files sink

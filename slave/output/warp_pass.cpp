@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dome/acuity_blur.hpp"
 #include "gl/gl_api.hpp"
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_program.hpp"
@@ -150,7 +151,18 @@ WarpPass::WarpPass(std::optional<ProjectorWarp> warp, int content_width, int con
 
 WarpPass::~WarpPass() = default;
 
-void WarpPass::draw(unsigned content_texture, double exposure, double tone_white, double night_adapted_cd_m2) {
+void WarpPass::set_acuity_blur(double sigma_rad) const {
+    const GlProgram& p = gpu_->program;
+    const auto& view = options_.content_view;
+    const bool on = view && acuity_blur_needed(sigma_rad, (view->tan_left() + view->tan_right()) / content_width_);
+    p.set("u_acuity_sigma_rad", on ? static_cast<float>(sigma_rad) : 0.0f);
+    if (!on) return;
+    p.set("u_content_tan", glm::vec4(view->tan_left(), view->tan_right(), view->tan_down(), view->tan_up()));
+    p.set("u_content_to_dome", glm::mat3(view->rotation()));
+}
+
+void WarpPass::draw(unsigned content_texture, double exposure, double tone_white, double night_adapted_cd_m2,
+                    double acuity_sigma_rad) {
     const GlProgram& p = gpu_->program;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->both_fbo);
     glViewport(0, 0, width_, height_);
@@ -171,6 +183,7 @@ void WarpPass::draw(unsigned content_texture, double exposure, double tone_white
     p.set("u_exposure", static_cast<float>(exposure));
     p.set("u_tone_white", static_cast<float>(tone_white));
     p.set("u_night_adapted_cd_m2", static_cast<float>(night_adapted_cd_m2));
+    set_acuity_blur(acuity_sigma_rad);
     p.set("u_gamma", static_cast<float>(warp_ ? warp_->projector_gamma : 2.2));
     p.set("u_identity", warp_ ? 0 : 1);
     const bool srgb = options_.encode == WarpOptions::Encode::Srgb;

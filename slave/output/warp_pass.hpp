@@ -45,6 +45,7 @@
 
 #include "calibration/projector_warp.hpp"
 #include "image/frame_image.hpp"
+#include "projection/channel_frustum.hpp"
 
 namespace cupola {
 
@@ -53,6 +54,9 @@ struct WarpOptions {
     enum class Encode { Srgb, Gamma } encode = Encode::Gamma;
     // The most taps per axis of the footprint box filter (1..8); 1 turns the filter off.
     int supersample_filter = 4;
+    // The content's projection (the channel's frustum), which the eye's acuity blur at night needs
+    // to take its taps in angle (shaders/shared/night_acuity.glsl); without it there is no blur.
+    std::optional<ChannelFrustum> content_view;
 };
 
 class WarpPass {
@@ -70,9 +74,12 @@ public:
     // texture name of linear RGBA32F radiance, v up: GL's row 0 at the bottom) times exposure into
     // two targets: linear (RGBA32F, after alpha and beta, before encode) and encoded (RGBA8, for
     // the projector), through the eye's night vision at night_adapted_cd_m2 (0: none) and the
-    // display curve of white `tone_white` (0: none). Leaves the draw framebuffer bound to the
+    // display curve of white `tone_white` (0: none), blurred first by the eye's acuity of standard
+    // deviation acuity_sigma_rad (0: none; needs options.content_view; skipped under a quarter
+    // of a content pixel, common/dome/acuity_blur.hpp). Leaves the draw framebuffer bound to the
     // encoded target.
-    void draw(unsigned content_texture, double exposure, double tone_white = 0.0, double night_adapted_cd_m2 = 0.0);
+    void draw(unsigned content_texture, double exposure, double tone_white = 0.0, double night_adapted_cd_m2 = 0.0,
+              double acuity_sigma_rad = 0.0);
 
     unsigned linear_framebuffer() const;
     unsigned encoded_framebuffer() const;
@@ -85,6 +92,8 @@ public:
     std::vector<uint8_t> read_encoded() const;  // RGBA8, row 0 top
 
 private:
+    void set_acuity_blur(double sigma_rad) const;
+
     struct Gpu;
     std::optional<ProjectorWarp> warp_;
     int width_ = 0, height_ = 0;
