@@ -1,6 +1,6 @@
 #version 450 core
 // A terrain tile's surface: the map's reflectance at the point (body_map_uv), lit by the Sun on the
-// slope and by the sky it sees (shared/terrain_light.glsl). With an atmosphere (TERRAIN_AIR) both
+// slope where the relief does not shadow it and by the sky it sees (shared/terrain_light.glsl). With an atmosphere (TERRAIN_AIR) both
 // come from the atmosphere's tables at the point, the Sun's light through the air to it; the
 // atmosphere pass then adds the air between the camera and the point (its march to scene
 // geometry, slave/passes/atmosphere_pass.hpp). Writes the deferred geometry as body.frag does
@@ -8,6 +8,7 @@
 in vec3 v_channel_m;
 in vec3 v_body_m;
 in vec3 v_normal;
+in float v_sun_seen;  // the relief's shadow (terrain.vert)
 uniform sampler2D u_texture;      // the body's map, linear RGB, row 0 = north
 uniform vec3 u_reflectance;       // albedo * tint
 uniform float u_pixel_rad;        // a pixel's angle (the channel's, at its centre)
@@ -39,12 +40,12 @@ void main() {
     float mu_s = dot(up, u_sun_body);
 #if TERRAIN_AIR
     float r = max(length(v_body_m), u_atm.bottom_radius_m + 1.0);
-    vec3 direct = atm_sun_transmittance(u_atm, u_transmittance, u_trans_size, r, mu_s);
+    vec3 direct = atm_sun_transmittance(u_atm, u_transmittance, u_trans_size, r, mu_s) * v_sun_seen;
     vec3 sky = atm_lookup_irradiance(u_atm, u_irradiance, u_irr_size, r, mu_s);
     vec3 e = terrain_illuminance(direct, sky, n, up, u_sun_body);
     vec3 radiance = reflectance * (1.0 / CUPOLA_PI) * atm_samples_to_rgb(e, u_weights, u_weight_count) * u_solar_scale;
 #else
-    vec3 radiance = reflectance * u_lit * max(dot(n, u_sun_body), 0.0);
+    vec3 radiance = reflectance * u_lit * max(dot(n, u_sun_body), 0.0) * v_sun_seen;
 #endif
     frag_color = vec4(max(radiance, vec3(0.0)), 1.0);
     frag_geometry = vec4(reflectance, distance_m);

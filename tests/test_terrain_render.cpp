@@ -400,3 +400,59 @@ TEST(TerrainRender, OneMetreAboveTheGroundAtOneAuItDrawsWhatItDrawsAtTheOrigin) 
     const Image g2 = (b.render(at_1au), b.read_geometry());
     EXPECT_EQ(g2.rgba, gb.rgba);
 }
+
+// The relief's shadows: the cone of the test above, no air, the Sun 1 degree high in the east at a
+// point on the flat ground 50 km west of the peak (the cone's shadow reaches about 80 km). Flat ground that a ray march
+// toward the Sun over the relief finds in the cone's shadow is dark; flat ground in the open beside it is lit.
+TEST(TerrainRender, AtALowSunTheReliefCastsShadowsWhereARayMarchFindsThem) {
+    context();
+    const std::string dir = test::scratch_dir("terrain_render_shadow");
+    const auto cone = [](double lon, double lat) {
+        return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
+    };
+    SceneConfig sc = terrain_scene(test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, 0.01, cone));
+    BodyConfig& earth = sc.bodies[earth_id(sc)];
+    earth.terrain.procedural_amplitude_m = 0.0;
+    earth.atmosphere.present = false;  // the Sun's light alone: a shadow is black
+    const terrain::BodyRelief relief = terrain::open_body_relief(earth);
+    const ChannelConfig ch = channel("down", FovDeg{20, 20, 20, 20}, 96, 96);
+    const double radius = earth.radius_m;
+    const Place lee = place(test::centric_deg(45.5), 10.25 - 0.65);
+    const glm::dvec3 sun = glm::normalize(lee.east + std::tan(1.0 * kDeg) * lee.up);
+    // 120 km over a point 60 km north of the lee point, looking straight down, north up: the
+    // shadow (as wide as the cone, 110 km north to south, at its base) fills the view's southern part.
+    const Place over = place(test::centric_deg(46.05), 10.25 - 0.65);
+    const Snapshot s = snapshot(sc, glm::dvec3(0.0), over.up * (radius + 120e3), -over.up, over.north, sun);
+    SceneRenderer r(cluster_of({ch}), ch, sc);
+    const Image img = render_settled(r, s), g = r.read_geometry();
+    double shadow_sum = 0.0, lit_sum = 0.0;
+    int shadow_n = 0, lit_n = 0;
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const float dist = g.rgba[4 * (static_cast<size_t>(y) * g.width + x) + 3];
+            if (dist < 0.0f) continue;
+            const glm::dvec3 hit = s.camera_position_m + static_cast<double>(dist) * pixel_ray(ch, s, x, y);
+            const glm::dvec3 d = glm::normalize(hit);
+            if (relief.relief->height_m(d, 0.0) > 1.0) continue;  // flat ground only: no slope's own shading
+            // The relief's highest elevation toward the Sun, marched every 250 m over 120 km.
+            const glm::dvec3 toward = glm::normalize(sun - d * glm::dot(sun, d));
+            double horizon = -1.0;
+            for (double a = 250.0; a < 120e3; a += 250.0) {
+                const glm::dvec3 q = d * std::cos(a / radius) + toward * std::sin(a / radius);
+                const glm::dvec3 p = q * (radius + relief.relief->height_m(q, 0.0)) - d * radius;
+                horizon = std::max(horizon, glm::dot(p, d) / glm::length(p));
+            }
+            const double margin = glm::dot(sun, d) - horizon;
+            if (std::abs(margin) < 0.011) continue;  // the soft edge (TERRAIN_SHADOW_EDGE and a quantum)
+            (margin > 0.0 ? lit_sum : shadow_sum) += luminance(img, x, y);
+            (margin > 0.0 ? lit_n : shadow_n) += 1;
+        }
+    ASSERT_GT(shadow_n, 40) << "the view must hold some of the cone's shadow";
+    ASSERT_GT(lit_n, 40) << "and some open ground";
+    const double shadow = shadow_sum / shadow_n, lit = lit_sum / lit_n;
+    std::printf("flat ground: %d pixels in shadow at %.3g, %d lit at %.3g\n", shadow_n, shadow, lit_n, lit);
+    EXPECT_GT(lit, 0.0);
+    EXPECT_LT(shadow, 0.05 * lit);
+    if (const char* out = std::getenv("CUPOLA_TERRAIN_IMAGES"))
+        write_frame(std::string(out) + "/cone_shadow", img, FrameMetadata{}, {"exr"}, 1.0);
+}

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "terrain/terrain_cut.hpp"
+#include "terrain/tile_horizon.hpp"
 
 namespace cupola::terrain {
 
@@ -87,7 +88,7 @@ glm::dvec3 TileMesh::position_m(int i, int j, double morph) const {
     return glm::mix(parent_position_m(i, j), own, morph);
 }
 
-TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments) {
+TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments, bool horizon) {
     if (segments < 2 || segments % 2 || segments > 256)
         throw std::invalid_argument("tile mesh: " + std::to_string(segments) + " segments (even, 2..256)");
     TileMesh m;
@@ -110,6 +111,7 @@ TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments)
     const double coarse = 4.0 * spacing;
     m.skirt_depth_m =
         relief.mesh_error_m(spacing) + relief.mesh_error_m(coarse) + coarse * coarse / (4.0 * m.radius_m) + 1.0;
+    if (horizon) m.horizon = tile_horizon(m, relief);
     return m;
 }
 
@@ -153,7 +155,8 @@ std::vector<TileMesh::GpuVertex> TileMesh::gpu_vertices() const {
                   j = static_cast<int>(k / static_cast<size_t>(segments + 1));
         const glm::dvec3 own = position_m(i, j) - directions[k] * drop_m;
         const glm::dvec3 parent = parent_position_m(i, j) - directions[k] * drop_m;
-        out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own), glm::vec3(normals[k])});
+        out.push_back({glm::vec3(own - centre_m), glm::vec3(parent - own), glm::vec3(normals[k]),
+                       horizon.empty() ? glm::vec4(0.0f) : horizon[k]});
     };
     for (size_t k = 0; k < directions.size(); ++k) vertex(k, 0.0);
     for (size_t k : edge_ring(*this)) vertex(k, skirt_depth_m);

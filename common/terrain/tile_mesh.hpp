@@ -29,6 +29,9 @@ struct TileMesh {
     // relief at this tile's spacing, across the tile's edges too (one sample beyond), so two
     // neighbours of a level agree along their shared edge.
     std::vector<glm::dvec3> normals;
+    // The relief's horizon at each grid vertex, packed (terrain/tile_horizon.hpp); empty when the
+    // mesh was built without it (the GPU then sees every vertex in the open).
+    std::vector<glm::vec4> horizon;
     double skirt_depth_m = 0.0;  // how far the skirt hangs below the edge
     double radius_m = 0.0;       // the body's reference sphere
     int vertices_per_side() const { return segments + 1; }
@@ -50,11 +53,13 @@ struct TileMesh {
         glm::vec3 position;      // own shape, relative to the centre
         glm::vec3 parent_delta;  // parent shape minus own shape
         glm::vec3 normal;        // unit, body-fixed (a skirt vertex takes its edge vertex's)
+        glm::vec4 horizon;       // packed horizon (zeros without one; a skirt vertex takes its edge vertex's)
     };
     std::vector<GpuVertex> gpu_vertices() const;
 };
 
-// The mesh of a tile; segments must be even (the parent's vertices are every other one).
-TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments);
+// The mesh of a tile; segments must be even (the parent's vertices are every other one). With
+// `horizon`, also its horizon map (the relief's shadows; several times the build's cost).
+TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments, bool horizon = false);
 
 }  // namespace cupola::terrain

@@ -9,7 +9,7 @@ namespace cupola::terrain {
 namespace {
 size_t mesh_bytes(const TileMesh& m) {
     return (m.directions.size() + m.normals.size()) * sizeof(glm::dvec3) +
-           (m.height_m.size() + m.parent_height_m.size()) * sizeof(double);
+           (m.height_m.size() + m.parent_height_m.size()) * sizeof(double) + m.horizon.size() * sizeof(glm::vec4);
 }
 }  // namespace
 
@@ -21,7 +21,7 @@ TileStore::TileStore(std::shared_ptr<const Relief> relief, const Options& option
     stats_.capacity = options.capacity;
     for (int f = 0; f < kCubeFaces; ++f) {
         const TileKey root{static_cast<CubeFace>(f), 0, 0, 0};
-        keep(std::make_shared<const TileMesh>(build_tile_mesh(root, *relief_, options_.segments)));
+        keep(std::make_shared<const TileMesh>(build_tile_mesh(root, *relief_, options_.segments, options_.horizon)));
     }
     for (int i = 0; i < options.workers; ++i) workers_.emplace_back([this] { work(); });
 }
@@ -136,7 +136,8 @@ void TileStore::work() {
         std::string failure;
         try {
             if (hook) hook(key);
-            mesh = std::make_shared<const TileMesh>(build_tile_mesh(key, *relief_, options_.segments));
+            mesh =
+                std::make_shared<const TileMesh>(build_tile_mesh(key, *relief_, options_.segments, options_.horizon));
         } catch (const std::exception& e) {
             failure = e.what();
         } catch (...) {

@@ -46,9 +46,10 @@ class TileStore {
 public:
     struct Options {
         int workers = 2;
-        size_t capacity =
-            3000;  // meshes kept (above a cut's tiles; 70 kB each at 32 segments), least recently drawn out first
+        size_t capacity = 3000;  // meshes kept (above a cut's tiles; 87 kB each at 32 segments with the horizon), least
+                                 // recently drawn out first
         int segments = 32;
+        bool horizon = false;  // each mesh with its horizon map, for the relief's shadows (tile_horizon.hpp)
     };
     TileStore(std::shared_ptr<const Relief> relief, const Options& options);
     ~TileStore();

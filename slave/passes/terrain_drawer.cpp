@@ -40,6 +40,7 @@ TerrainDrawer::TerrainDrawer(const SceneConfig& scene, const ClusterConfig& clus
         o.workers = c.terrain.workers;
         o.capacity = c.terrain.cache_tiles;
         o.segments = c.terrain.segments;
+        o.horizon = true;  // the relief's shadows
         b->store = std::make_unique<terrain::TileStore>(b->relief, o);
         b->settings.budget_px = c.terrain.error_budget_px;
         b->settings.segments = c.terrain.segments;
@@ -76,14 +77,15 @@ const GlVertexBuffer& TerrainDrawer::gpu_tile(Body& b, const terrain::TileMesh& 
         b.recent.pop_back();
     }
     if (!b.indices) {  // every tile of the body has the same triangles: one index buffer for all
-        b.indices = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3});
+        b.indices = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3, 4});
         b.indices->upload_indices(mesh.triangle_indices());
     }
-    auto buffer = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3});
+    auto buffer = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3, 4});
     std::vector<float> data;
     for (const auto& v : mesh.gpu_vertices())
-        data.insert(data.end(), {v.position.x, v.position.y, v.position.z, v.parent_delta.x, v.parent_delta.y,
-                                 v.parent_delta.z, v.normal.x, v.normal.y, v.normal.z});
+        data.insert(data.end(),
+                    {v.position.x, v.position.y, v.position.z, v.parent_delta.x, v.parent_delta.y, v.parent_delta.z,
+                     v.normal.x, v.normal.y, v.normal.z, v.horizon.x, v.horizon.y, v.horizon.z, v.horizon.w});
     buffer->upload(data);
     buffer->share_indices(*b.indices);
     b.recent.push_front(id);
