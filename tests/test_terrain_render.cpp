@@ -456,3 +456,29 @@ TEST(TerrainRender, AtALowSunTheReliefCastsShadowsWhereARayMarchFindsThem) {
     if (const char* out = std::getenv("CUPOLA_TERRAIN_IMAGES"))
         write_frame(std::string(out) + "/cone_shadow", img, FrameMetadata{}, {"exr"}, 1.0);
 }
+
+// Relief within ten radii of the camera, the sphere beyond; and the sphere in a frame whose sky
+// is drawn first (its bodies beyond the air go to a colour target without a depth buffer).
+TEST(TerrainRender, ABodyIsReliefWithinTenRadiiAndNeverWhenTheSkyIsDrawnFirst) {
+    const SceneConfig sc = terrain_scene();
+    const BodyConfig& earth = *sc.find("earth");
+    BodyState state;
+    state.id = earth.id;
+    Snapshot snap;
+    FrameContext f;
+    f.snap = &snap;
+    FrameBody b;
+    b.state = &state;
+    b.body = &earth;
+    f.view.camera_position_m = glm::dvec3(0.0, 0.0, 9.9 * earth.radius_m);
+    EXPECT_TRUE(draws_terrain(f, b));
+    f.sky_first = true;
+    EXPECT_FALSE(draws_terrain(f, b));
+    f.sky_first = false;
+    f.view.camera_position_m = glm::dvec3(0.0, 0.0, 10.1 * earth.radius_m);
+    EXPECT_FALSE(draws_terrain(f, b));
+    const SceneConfig smooth = test::earth_moon_scene();  // no terrain section: never
+    b.body = smooth.find("earth");
+    f.view.camera_position_m = glm::dvec3(0.0, 0.0, 1.1 * earth.radius_m);
+    EXPECT_FALSE(draws_terrain(f, b));
+}

@@ -25,7 +25,7 @@ size_t index_count(int segments) { return static_cast<size_t>(segments) * (segme
 }  // namespace
 
 bool draws_terrain(const FrameContext& f, const FrameBody& body) {
-    if (!body.body->terrain.present || !f.snap) return false;
+    if (!body.body->terrain.present || !f.snap || f.sky_first) return false;
     return glm::length(f.view.camera_position_m - body.state->position_m) < kTerrainRange_radii * body.body->radius_m;
 }
 

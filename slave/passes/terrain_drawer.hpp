@@ -29,6 +29,10 @@ class GpuAtmosphere;
 // kTerrainRange_radii of its centre. Farther out the relief is below a pixel (10 km of relief at
 // ten radii of the Earth is 1.6e-4 rad, 0.4 px of a 4k dome) and the smooth sphere, with its
 // antialiased limb, draws it (BodyPass). From the snapshot alone: the same on every channel.
+// Not in a frame whose sky is drawn first (FrameContext::sky_first: the camera inside another
+// body's air), which draws the bodies beyond the air into a colour target without a depth buffer:
+// the body is drawn as its sphere then. (A planet with terrain never draws its own ground, so its
+// own air is never drawn first.)
 constexpr double kTerrainRange_radii = 10.0;
 bool draws_terrain(const FrameContext& f, const FrameBody& body);
 
