@@ -7,7 +7,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "atmosphere/solar_scale.hpp"
 #include "passes/atmosphere_uniforms.hpp"
 #include "passes/sphere_screen_bounds.hpp"
 #include "passes/terrain_drawer.hpp"
@@ -49,23 +48,6 @@ enum Unit : GLuint {
 
 // Direction from the planet's centre to the Sun (as the body pass lights it), and the Sun's
 // irradiance there in scene units over that of the model's physical spectrum; in double.
-struct PlanetSun {
-    glm::dvec3 dir_world{0.0, 0.0, 1.0};
-    double solar_scale = 0.0;  // 0: no Sun
-    double irradiance = 0.0;   // scene units
-};
-PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphere::ProductionAtmosphere& m) {
-    PlanetSun out;
-    if (!sun.present) return out;
-    const glm::dvec3 to_sun = sun.position_m - state.position_m;
-    const double d_sun = glm::length(to_sun);
-    if (d_sun <= 0.0) return out;
-    out.dir_world = to_sun / d_sun;
-    out.irradiance = sun_irradiance(sun, d_sun);
-    out.solar_scale = out.irradiance / atmosphere::physical_solar_illuminance(m);
-    return out;
-}
-
 // What the sky-view table depends on, from world positions in double (the same on every channel):
 // the camera's distance from the centre and the Sun's zenith cosine at the camera, on the table's
 // grid of Sun zenith angles (atmosphere::sky_view_table_sun_mu).
@@ -215,7 +197,7 @@ int AtmospherePass::prepare(const FrameContext& frame) {
             ++skipped;
             continue;
         }
-        const PlanetSun ps = planet_sun(*it.state, frame.light, atm->second->model());
+        const PlanetSun ps = planet_sun(*it.state, frame.light, &atm->second->model());
         const bool relief = draws_terrain(frame, it);
         layers_.push_back({&it, atm->second.get(),
                            relief || other_body_in_shell(frame, it, atm->second->top_radius_m()), relief,
@@ -271,7 +253,7 @@ StarSky AtmospherePass::star_sky(const FrameContext& f) const {
     }
     if (!planet || !(f.light.radiance > 0.0)) return out;
     if (shadow_needs_march(f.casters_of(planet->body->id))) return out;
-    const PlanetSun ps = planet_sun(*planet->state, f.light, atm->model());
+    const PlanetSun ps = planet_sun(*planet->state, f.light, &atm->model());
     GpuSkyViewTable* table = atm->sky_view();
     if (!table || !(ps.solar_scale > 0.0)) return out;
     const glm::dvec3 to_centre = planet->state->position_m - f.view.camera_position_m;
@@ -300,7 +282,7 @@ glm::dvec3 AtmospherePass::point_flux(const FrameContext& f, const FrameBody& pl
                                       const glm::dvec3& ground_rgb) const {
     const auto a = atmospheres_.find(planet.body->id);
     if (a == atmospheres_.end()) return glm::dvec3(0.0);
-    const PlanetSun ps = planet_sun(*planet.state, f.light, a->second->model());
+    const PlanetSun ps = planet_sun(*planet.state, f.light, &a->second->model());
     const glm::dvec3 to_camera = f.view.camera_position_m - planet.state->position_m;
     const double d = glm::length(to_camera);
     if (!(ps.solar_scale > 0.0) || d <= a->second->top_radius_m()) return glm::dvec3(0.0);
@@ -332,7 +314,7 @@ void AtmospherePass::set_sky_in_front(const GlProgram& p) const {
     const Layer& l = layers_.front();
     const FrameContext& f = *frame_;
     const shading::AtmosphereParams& a = l.atmosphere->model().shader_params();
-    const PlanetSun ps = planet_sun(*l.body->state, f.light, l.atmosphere->model());
+    const PlanetSun ps = planet_sun(*l.body->state, f.light, &l.atmosphere->model());
     const glm::vec2 table_in = sky_view_inputs(f.view, *l.body->state, ps.dir_world);
     // As the draw had them (set_draw_uniforms, shade() in atmosphere_lookup.frag).
     const glm::vec3 up = -glm::vec3(l.body->sphere.center_dir), sun(f.view.world_to_channel * ps.dir_world);
@@ -463,7 +445,7 @@ void AtmospherePass::draw(const ChannelView& view, GpuAtmosphere& atm, const Bod
                           const SunLight& sun, const GlTexture& geometry, const EclipseShadowUniforms& shadows,
                           const shading::EclipseCasters& casters, bool geometry_in_air, AtmosphereDrawExtras extras) {
     const atmosphere::ProductionAtmosphere& m = atm.model();
-    const PlanetSun ps = planet_sun(state, sun, m);
+    const PlanetSun ps = planet_sun(state, sun, &m);
     const glm::vec2 table_in = sky_view_inputs(view, state, ps.dir_world);
     const glm::dvec3 sun_dir = view.world_to_channel * ps.dir_world;
     const PixelRect r = sphere_screen_bounds(*view.frustum, sphere.center_dir * sphere.distance_m, atm.top_radius_m());

@@ -1,6 +1,8 @@
 #include "passes/atmosphere_uniforms.hpp"
 
+#include "atmosphere/solar_scale.hpp"
 #include "passes/atmosphere_pass.hpp"
+#include "passes/body_pass.hpp"
 
 namespace cupola {
 
@@ -35,6 +37,18 @@ void bind_atmosphere_tables(const GlProgram& p, const GpuAtmosphere& atm, GLuint
     p.set("u_irradiance", static_cast<int>(first_unit + 2));
     p.set("u_weights", static_cast<int>(first_unit + 3));
     atm.bind(first_unit);
+}
+
+PlanetSun planet_sun(const BodyState& state, const SunLight& sun, const atmosphere::ProductionAtmosphere* m) {
+    PlanetSun out;
+    if (!sun.present) return out;
+    const glm::dvec3 to_sun = sun.position_m - state.position_m;
+    const double d_sun = glm::length(to_sun);
+    if (d_sun <= 0.0) return out;
+    out.dir_world = to_sun / d_sun;
+    out.irradiance = sun_irradiance(sun, d_sun);
+    if (m) out.solar_scale = out.irradiance / atmosphere::physical_solar_illuminance(*m);
+    return out;
 }
 
 }  // namespace cupola

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "atmosphere/solar_scale.hpp"
 #include "passes/atmosphere_pass.hpp"
 #include "passes/atmosphere_uniforms.hpp"
 #include "passes/body_pass.hpp"
@@ -97,16 +96,13 @@ const GlVertexBuffer& TerrainDrawer::gpu_tile(Body& b, const terrain::TileMesh& 
 
 void TerrainDrawer::set_light(const GlProgram& p, const FrameContext& f, const FrameBody& body,
                               const GpuAtmosphere* air) const {
-    const glm::dmat3 from_world = glm::transpose(body_to_world(*body.state));
-    const glm::dvec3 to_sun = f.light.position_m - body.state->position_m;
-    const double d_sun = glm::length(to_sun);
-    const double irradiance = sun_irradiance(f.light, d_sun);
-    p.set("u_sun_body", glm::vec3(d_sun > 0.0 ? from_world * (to_sun / d_sun) : glm::dvec3(0.0, 0.0, 1.0)));
-    p.set("u_lit", glm::vec3(static_cast<float>(irradiance / std::numbers::pi)));
+    const PlanetSun sun = planet_sun(*body.state, f.light, air ? &air->model() : nullptr);
+    p.set("u_sun_body", glm::vec3(glm::transpose(body_to_world(*body.state)) * sun.dir_world));
+    p.set("u_lit", glm::vec3(static_cast<float>(sun.irradiance / std::numbers::pi)));
     if (!air) return;
     set_atmosphere_params(p, air->model().shader_params());
     bind_atmosphere_tables(p, *air, kTableUnit);
-    p.set("u_solar_scale", static_cast<float>(irradiance / atmosphere::physical_solar_illuminance(air->model())));
+    p.set("u_solar_scale", static_cast<float>(sun.solar_scale));
 }
 
 void TerrainDrawer::draw(const FrameContext& f, const FrameBody& body, const GlTexture& map, const GpuAtmosphere* air) {
