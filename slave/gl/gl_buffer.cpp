@@ -5,6 +5,12 @@
 
 namespace cupola {
 
+GlIndexBuffer::GlIndexBuffer(const std::vector<GLuint>& indices) : count_(indices.size()) {
+    glCreateBuffers(1, &ebo_);
+    glNamedBufferData(ebo_, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
+                      indices.empty() ? nullptr : indices.data(), GL_STATIC_DRAW);
+}
+
 GlVertexBuffer::GlVertexBuffer(std::vector<int> components) {
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(1, &vbo_);

@@ -1,10 +1,27 @@
 #pragma once
 // A vertex array object with one interleaved float vertex buffer (RAII).
+#include <cstddef>
 #include <vector>
 
 #include "gl/gl_api.hpp"
 
 namespace cupola {
+
+// An index buffer of its own (RAII), for vertex arrays that share their triangles
+// (GlVertexBuffer::share_indices).
+class GlIndexBuffer {
+public:
+    explicit GlIndexBuffer(const std::vector<GLuint>& indices);
+    ~GlIndexBuffer() { glDeleteBuffers(1, &ebo_); }
+    GlIndexBuffer(const GlIndexBuffer&) = delete;
+    GlIndexBuffer& operator=(const GlIndexBuffer&) = delete;
+    GLuint id() const { return ebo_; }
+    size_t count() const { return count_; }
+
+private:
+    GLuint ebo_ = 0;
+    size_t count_ = 0;
+};
 
 class GlVertexBuffer {
 public:
@@ -18,9 +35,9 @@ public:
     void upload(const std::vector<float>& data);
     // Replaces the index buffer (made on first use) that indexed draws of this array read.
     void upload_indices(const std::vector<GLuint>& indices);
-    // Indexed draws read another array's index buffer (not owned; it must outlive this one's
-    // draws): arrays with the same triangles share one.
-    void share_indices(const GlVertexBuffer& owner) { glVertexArrayElementBuffer(vao_, owner.ebo_); }
+    // Indexed draws read a shared index buffer (not owned; it must outlive this array's draws):
+    // arrays with the same triangles share one.
+    void share_indices(const GlIndexBuffer& indices) { glVertexArrayElementBuffer(vao_, indices.id()); }
     int vertex_count() const { return count_; }
     void bind() const { glBindVertexArray(vao_); }
     // Takes one more attribute, `location`, from another buffer (not owned): `components` floats

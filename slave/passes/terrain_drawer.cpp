@@ -76,8 +76,7 @@ const GlVertexBuffer& TerrainDrawer::gpu_tile(Body& b, const terrain::TileMesh& 
         b.recent.pop_back();
     }
     if (!b.indices) {  // every tile of the body has the same triangles: one index buffer for all
-        b.indices = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3, 4});
-        b.indices->upload_indices(mesh.triangle_indices());
+        b.indices = std::make_unique<GlIndexBuffer>(mesh.triangle_indices());
     }
     auto buffer = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 3, 4});
     std::vector<float> data;

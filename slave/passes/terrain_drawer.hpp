@@ -73,7 +73,7 @@ private:
         std::unique_ptr<terrain::TileStore> store;
         terrain::TileRangeCache ranges;
         terrain::CutSettings settings;
-        std::unique_ptr<GlVertexBuffer> indices;    // every tile's triangles, shared (outlives the tiles)
+        std::unique_ptr<GlIndexBuffer> indices;     // every tile's triangles, shared (outlives the tiles)
         std::unordered_map<uint64_t, GpuTile> gpu;  // by TileKey::id
         std::list<uint64_t> recent;                 // most recently drawn first
         size_t gpu_capacity = 0;
