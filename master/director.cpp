@@ -264,15 +264,17 @@ std::string Director::apply_goto(const ControlCommand& cmd, uint64_t next) {
     const uint16_t id = body_id(cmd.body);
     take_over(next, "goto");
     const double secs = cmd.seconds.value_or(cluster_.input.goto_seconds);
-    nav_.fly_to(id, secs, nav_bodies(scene_, states_at(live_sim_time_at(next))));
-    if (cmd.height_m) land_above_ground(id, *cmd.height_m, secs, next);
+    const std::vector<NavBody> bodies = nav_bodies(scene_, states_at(live_sim_time_at(next)));
+    nav_.fly_to(id, secs, bodies);
+    if (cmd.height_m) land_above_ground(id, *cmd.height_m, secs, next, bodies);
     char buf[256];
     std::snprintf(buf, sizeof buf, "goto %s: flying for %.3g s from frame %llu", scene_.bodies[id].name.c_str(), secs,
                   static_cast<unsigned long long>(next));
     return buf;
 }
 
-void Director::land_above_ground(uint16_t id, double height_m, double seconds, uint64_t next) {
+void Director::land_above_ground(uint16_t id, double height_m, double seconds, uint64_t next,
+                                 const std::vector<NavBody>& bodies) {
     // The frames step by dt_ (the flight too), so the landing frame and its sim time are known.
     const uint64_t landing = next + static_cast<uint64_t>(std::llround(seconds / dt_));
     const std::vector<BodyState> at_landing = states_at(live_sim_time_at(landing));  // paused: no change
@@ -283,8 +285,8 @@ void Director::land_above_ground(uint16_t id, double height_m, double seconds, u
     const double r = scene_.bodies[id].radius_m;
     const glm::dvec3 under = body->position_m + nav_.landing_direction() * r;
     const double ground_m = clearance_.ground_height_m(*body, under);
-    nav_.fly_to(id, seconds, nav_bodies(scene_, states_at(live_sim_time_at(next))), (r + ground_m + height_m) / r,
-                r + ground_m + std::min(height_m, 2.0));
+    // Never lower than the clearance the master keeps above the relief (the parser asks for that much).
+    nav_.fly_to(id, seconds, bodies, (r + ground_m + height_m) / r, r + ground_m + terrain::kGroundClearance_m);
 }
 
 std::string Director::apply_mode(const ControlCommand& cmd, uint64_t next) {

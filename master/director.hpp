@@ -71,7 +71,8 @@ private:
     std::string apply_goto(const ControlCommand& cmd, uint64_t next);
     // After a goto to body id, `height_m` above the ground: re-plans the flight to land that high
     // above the relief (or sphere) where it lands, at the landing frame's time.
-    void land_above_ground(uint16_t id, double height_m, double seconds, uint64_t next);
+    void land_above_ground(uint16_t id, double height_m, double seconds, uint64_t next,
+                           const std::vector<NavBody>& bodies);
     std::string apply_mode(const ControlCommand& cmd, uint64_t next);
     std::string apply_play(const ControlCommand& cmd, uint64_t next);
     void apply_setting(const ControlCommand& cmd);  // "set": the overrides of the show

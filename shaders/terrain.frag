@@ -1,9 +1,9 @@
 #version 450 core
 // A terrain tile's surface: the map's reflectance at the point (body_map_uv), lit by the Sun on the
-// slope where the relief does not shadow it and by the sky it sees (shared/terrain_light.glsl). With an atmosphere (TERRAIN_AIR) both
-// come from the atmosphere's tables at the point, the Sun's light through the air to it; the
-// atmosphere pass then adds the air between the camera and the point (its march to scene
-// geometry, slave/passes/atmosphere_pass.hpp). Writes the deferred geometry as body.frag does
+// slope where the relief does not shadow it and by the sky it sees (shared/terrain_light.glsl).
+// With an atmosphere (TERRAIN_AIR) both come from the atmosphere's tables at the point, the Sun's
+// light through the air to it; the atmosphere pass then adds the air between the camera and the
+// point (its march to scene geometry, slave/passes/atmosphere_pass.hpp). Writes the deferred geometry as body.frag does
 // (reflectance, distance) and a logarithmic depth, so the relief hides itself.
 in vec3 v_channel_m;
 in vec3 v_body_m;

@@ -84,9 +84,7 @@ vec3 filtered_content(WarpPoint w) {
 // The content's perspective projection, as common/projection/channel_frustum.cpp: (u, v), v up,
 // to and from dome directions.
 vec3 content_direction(vec2 uv) {
-    vec3 c = vec3(-u_content_tan.x + uv.x * (u_content_tan.x + u_content_tan.y),
-                  -u_content_tan.z + uv.y * (u_content_tan.z + u_content_tan.w), -1.0);
-    return normalize(u_content_to_dome * c);
+    return normalize(u_content_to_dome * channel_ray(uv, vec2(1.0), u_content_tan));
 }
 
 vec2 content_uv(vec3 dome_dir) {

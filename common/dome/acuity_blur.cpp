@@ -50,10 +50,6 @@ void blur_pixel(const Image& linear, const PixelRays& rays, const glm::dvec3& d,
     for (int c = 0; c < 4; ++c) out[c] = static_cast<float>(sum[c] / weight);
 }
 
-}  // namespace
-
-namespace {
-
 Image blur_pass(const Image& linear, const PixelRays& rays, double sigma_rad) {
     Image out = linear;
     for (int y = 0; y < linear.height; ++y) {

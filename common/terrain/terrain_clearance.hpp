@@ -15,9 +15,12 @@
 
 namespace cupola::terrain {
 
+// How high above the relief the master keeps the camera by default.
+constexpr double kGroundClearance_m = 2.0;
+
 class TerrainClearance {
 public:
-    explicit TerrainClearance(const SceneConfig& scene, double clearance_m = 2.0);
+    explicit TerrainClearance(const SceneConfig& scene, double clearance_m = kGroundClearance_m);
     // The camera (world, m) lifted above any relief it is under; bodies: this frame's states.
     glm::dvec3 keep_above(const std::vector<BodyState>& bodies, const glm::dvec3& camera_m) const;
     // A walker's camera, eye_height above the body's sphere, moved along the vertical by the relief's

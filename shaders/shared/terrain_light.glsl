@@ -55,7 +55,7 @@ const float TERRAIN_SHADOW_EDGE = 0.01;
 // vertical; sun: unit, toward the Sun; both body frame. An entry of zeros is a horizon at
 // -90 degrees everywhere: fully lit.
 float terrain_sun_visibility(vec4 map_entry, vec3 up, vec3 sun) {
-    vec3 east = normalize(terrain_east(up) - up * dot(terrain_east(up), up));
+    vec3 east = terrain_east(up);  // perpendicular to up by construction
     vec3 north = cross(up, east);
     float azimuth_rad = atan(dot(sun, north), dot(sun, east));
     float f = azimuth_rad / (CUPOLA_PI / 4.0);
