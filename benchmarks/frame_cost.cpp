@@ -22,7 +22,8 @@
 //    "trivial_ms", "ratio", "ratio_untimed", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
-//    "surface_separate", "stars_ignore_sky", "sky_last", "overlays"}
+//    "surface_separate", "stars_ignore_sky", "sky_last", "overlays"} (with --overlays also
+//    "overlays_extra_ms", "overlays_ratio")
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end), and
 // ratio_untimed that frame over the trivial pass: the waits after every pass cost llvmpipe a
@@ -38,8 +39,9 @@
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
 //                        [--stars-ignore-sky] [--sky-last] [--overlays all|NAME,...]
-// With --overlays the scene's overlays named (or all) are shown (the pass "overlays"; their cost
-// is the frame's ratio with them minus the ratio without).
+// With --overlays the scene's overlays named (or all) are shown (the pass "overlays"), and every
+// round also draws the untimed frame without them, right after it: "overlays_extra_ms" is the
+// median of those differences and "overlays_ratio" that over the trivial pass, the overlays' cost.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -271,6 +273,7 @@ ClusterConfig one_channel(int size) {
 // that drifts of the machine hit all three alike.
 struct ViewTimes {
     std::vector<double> trivial, frame, untimed, read_back;
+    std::vector<double> overlays_extra;  // with --overlays: each round's untimed frame minus the same without them
     std::vector<double> trivial_cpu, frame_cpu;  // the process's CPU time (all its threads)
     std::map<std::string, std::vector<double>> passes;
     std::vector<std::string> order;  // pass names in run order
@@ -288,6 +291,13 @@ double one_frame(SceneRenderer& r, const Snapshot& snap, bool read_back) {
 // The snapshot of frame i (warm-up frames first): the view's, with the Sun raised by i times
 // --sun-step-deg (0: the same snapshot every frame).
 using FrameSnapshots = std::function<Snapshot(int)>;
+
+// The untimed frame of a snapshot with every overlay hidden (the overlays' cost is the difference
+// of two frames drawn one after the other, which a drift of the machine hits alike).
+double untimed_without_overlays(SceneRenderer& r, Snapshot snap, const Options& o) {
+    snap.settings.overlay_alpha.fill(0.0f);
+    return one_frame(r, snap, o.read_back);
+}
 
 ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots& snaps, const Options& o) {
     for (int i = 0; i < o.warm_up; ++i) {
@@ -316,6 +326,7 @@ ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots
             t.passes[name].push_back(ms);
         }
         t.untimed.push_back(one_frame(r, next, o.read_back));
+        if (!o.overlays.empty()) t.overlays_extra.push_back(t.untimed.back() - untimed_without_overlays(r, next, o));
     }
     return t;
 }
@@ -335,6 +346,10 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["trivial_ms"] = trivial_ms;
     j["ratio"] = trivial_ms > 0.0 ? frame_ms / trivial_ms : 0.0;
     j["ratio_untimed"] = trivial_ms > 0.0 ? median(t.untimed) / trivial_ms : 0.0;
+    if (!t.overlays_extra.empty()) {
+        j["overlays_extra_ms"] = median(t.overlays_extra);
+        j["overlays_ratio"] = trivial_ms > 0.0 ? median(t.overlays_extra) / trivial_ms : 0.0;
+    }
     // The fastest of the samples: on a machine shared with other work the least disturbed ones.
     const double trivial_min = *std::min_element(t.trivial.begin(), t.trivial.end());
     const double frame_min = *std::min_element(t.frame.begin(), t.frame.end());

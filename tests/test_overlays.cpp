@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/rotate_vector.hpp>
 #include <map>
 
 #include "config/cluster_config.hpp"
@@ -112,6 +113,39 @@ TEST(OverlayData, CullingKeepsEveryRunThatCanTouchTheChannel) {
     }
     std::printf("equatorial grid: %zu of %zu runs kept for a 60 degree channel\n", kept, chunks.size());
     EXPECT_LT(kept, chunks.size() / 4);
+    // Arc by arc, as the pass culls within the runs it keeps: no arc with an end inside is culled.
+    const FrustumSides sides(t);
+    size_t arcs_kept = 0;
+    for (const SkyArc& a : grid) {
+        const glm::dvec4 cone = arc_cone(a);
+        const bool touches = sides.touched_by(to_channel * glm::dvec3(cone), cone.w);
+        if (f.contains(a.a) || f.contains(a.b)) ASSERT_TRUE(touches);
+        arcs_kept += touches ? 1 : 0;
+    }
+    std::printf("equatorial grid: %zu of %zu arcs kept\n", arcs_kept, grid.size());
+    EXPECT_LT(arcs_kept, kept * 16 * 2 / 3) << "fewer than the runs hold";
+}
+
+// Every point of every overlay's arcs, along its own circle, lies within the arc's cone.
+TEST(OverlayData, EveryArcLiesWithinItsCone) {
+    const auto lines = overlay_lines(load_constellation_figures(kFigures));
+    double worst_margin_deg = 1e9;
+    for (const auto& arcs : lines)
+        for (const SkyArc& arc : arcs) {
+            const glm::dvec4 cone = arc_cone(arc);
+            // The arc is a turned about its pole from 0 to phi.
+            const glm::dvec3 ap = arc.a - glm::dot(arc.a, arc.pole) * arc.pole;
+            const glm::dvec3 bp = arc.b - glm::dot(arc.b, arc.pole) * arc.pole;
+            const double phi = std::atan2(glm::dot(glm::cross(ap, bp), arc.pole), glm::dot(ap, bp));
+            for (int i = 0; i <= 16; ++i) {
+                const glm::dvec3 p = glm::rotate(arc.a, phi * i / 16.0, arc.pole);
+                const double off = angle_deg(glm::dvec3(cone), p);
+                worst_margin_deg = std::min(worst_margin_deg, glm::degrees(cone.w) - off);
+                ASSERT_LE(off, glm::degrees(cone.w) + 1e-9)
+                    << "point " << i << " of an arc at latitude " << arc.lat_rad;
+            }
+        }
+    std::printf("arc cones: the closest point lies %.5f degrees inside its cone\n", worst_margin_deg);
 }
 
 TEST(OverlayData, MalformedFiguresAreRefusedNamingTheField) {

@@ -28,13 +28,29 @@ std::vector<ArcChunk> arc_chunks(const std::vector<SkyArc>& arcs, int arcs_per_c
     return out;
 }
 
+glm::dvec4 arc_cone(const SkyArc& arc) {
+    const glm::dvec3 mid = arc.a + arc.b;
+    const glm::dvec3 centre = glm::length(mid) > 1e-12 ? glm::normalize(mid) : arc.a;
+    const double half_rad = 0.5 * angle_rad(arc.a, arc.b);
+    // A small circle of latitude L curves by tan(L) (its geodesic curvature): its arc strays from
+    // the great circle through its ends by about tan(L) half^2 / 2, under half^2 / cos(L) (taken
+    // no smaller than at 89 degrees; the grids stop at 80).
+    const double sag_rad = half_rad * half_rad / std::max(std::cos(arc.lat_rad), 0.017);
+    return {centre, half_rad + sag_rad};
+}
+
 bool cone_touches_frustum(const glm::dvec3& centre, double radius_rad, const glm::dvec4& t) {
+    return FrustumSides(t).touched_by(centre, radius_rad);
+}
+
+FrustumSides::FrustumSides(const glm::dvec4& t)
+    : inward_{glm::normalize(glm::dvec3(1.0, 0.0, -t.x)), glm::normalize(glm::dvec3(-1.0, 0.0, -t.y)),
+              glm::normalize(glm::dvec3(0.0, 1.0, -t.z)), glm::normalize(glm::dvec3(0.0, -1.0, -t.w))} {}
+
+bool FrustumSides::touched_by(const glm::dvec3& centre, double radius_rad) const {
     if (radius_rad >= 1.5) return true;  // near a hemisphere or more: not worth testing
-    const glm::dvec3 planes[4] = {
-        glm::normalize(glm::dvec3(1.0, 0.0, -t.x)), glm::normalize(glm::dvec3(-1.0, 0.0, -t.y)),
-        glm::normalize(glm::dvec3(0.0, 1.0, -t.z)), glm::normalize(glm::dvec3(0.0, -1.0, -t.w))};
     const double reach = -std::sin(radius_rad);
-    for (const glm::dvec3& n : planes)
+    for (const glm::dvec3& n : inward_)
         if (glm::dot(centre, n) < reach) return false;
     return true;
 }

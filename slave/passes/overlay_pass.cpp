@@ -15,24 +15,31 @@ namespace {
 
 constexpr int kAtlasPx = 48;  // em height the glyphs are rasterized at
 constexpr int kAtlasWidth = 2048;
-constexpr int kAtlasPad = 3;             // texels between labels (their mipmaps do not bleed into each other)
-constexpr double kBesideGap_em = 0.6;    // a star's or body's name starts this far right of it
-constexpr int kArcsPerChunk = 16;        // arcs culled together against the channel
+constexpr int kAtlasPad = 3;           // texels between labels (their mipmaps do not bleed into each other)
+constexpr double kBesideGap_em = 0.6;  // a star's or body's name starts this far right of it
+constexpr int kArcsPerChunk = 16;      // arcs culled together against the channel
+static_assert(kOverlayCount == 10, "shaders/overlay_line.vert and overlay_label.vert: kOverlays");
 constexpr double kCullSlack_rad = 0.02;  // more than any line's half width and margin
 
-// An arc's quad: vertices (dir, pole, lat, side) at a and b on either edge, and two triangles'
-// indices. An arc that continues the previous one along the same circle shares its two vertices
-// at the joint, so a tessellated circle costs two vertices an arc, not six.
+// An arc's quad: vertices (dir, pole, lat, side, overlay) at a and b on either edge, and two
+// triangles' indices. An arc that continues the previous one along the same circle shares its two
+// vertices at the joint, so a tessellated circle costs two vertices an arc, not six.
 struct ArcMesh {
     std::vector<float> vertices;
     std::vector<GLuint> indices;
     GLuint count = 0;
     const SkyArc* last = nullptr;
+    float overlay = 0.0f;  // the overlay the arcs added now belong to
 
+    void begin_overlay(size_t k) {
+        overlay = static_cast<float>(k);
+        last = nullptr;  // no arc continues one of another overlay
+    }
     void vertex(const SkyArc& arc, const glm::dvec3& d, float side) {
-        vertices.insert(vertices.end(), {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
-                                         static_cast<float>(arc.pole.x), static_cast<float>(arc.pole.y),
-                                         static_cast<float>(arc.pole.z), static_cast<float>(arc.lat_rad), side});
+        vertices.insert(vertices.end(),
+                        {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z),
+                         static_cast<float>(arc.pole.x), static_cast<float>(arc.pole.y), static_cast<float>(arc.pole.z),
+                         static_cast<float>(arc.lat_rad), side, overlay});
         ++count;
     }
     void add(const SkyArc& arc) {
@@ -80,7 +87,8 @@ OverlayPass::OverlayPass(const SceneConfig& scene, const std::vector<Star>& star
     : scene_(&scene),
       line_program_("overlay_line.vert", "overlay_line.frag"),
       label_program_("overlay_label.vert", "overlay_label.frag"),
-      body_labels_({3, 2, 2}) {
+      static_labels_({3, 2, 2, 1}),
+      body_labels_({3, 2, 2, 1}) {
     const std::vector<ConstellationFigure> figures = load_constellation_figures(scene.overlays.figures);
     build_lines(figures);
     build_labels(figures, stars);
@@ -88,16 +96,23 @@ OverlayPass::OverlayPass(const SceneConfig& scene, const std::vector<Star>& star
 
 void OverlayPass::build_lines(const std::vector<ConstellationFigure>& figures) {
     const auto arcs = overlay_lines(figures);
+    ArcMesh mesh;
+    int first = 0;  // the overlay's first arc in the one buffer
     for (size_t k = 0; k < kOverlayCount; ++k) {
         arcs_[k] = arcs[k].size();
-        if (arcs[k].empty()) continue;
         chunks_[k] = arc_chunks(arcs[k], kArcsPerChunk);
-        ArcMesh mesh;
-        for (const SkyArc& a : arcs[k]) mesh.add(a);
-        lines_[k] = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 1, 1});
-        lines_[k]->upload(mesh.vertices);
-        lines_[k]->upload_indices(mesh.indices);
+        for (ArcChunk& c : chunks_[k]) c.first_arc += first;
+        mesh.begin_overlay(k);
+        for (const SkyArc& a : arcs[k]) {
+            mesh.add(a);
+            arc_cones_.emplace_back(arc_cone(a));
+        }
+        first += static_cast<int>(arcs[k].size());
     }
+    if (mesh.indices.empty()) return;
+    lines_ = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 3, 1, 1, 1});
+    lines_->upload(mesh.vertices);
+    lines_->upload_indices(mesh.indices);
 }
 
 // Every label rasterized once (FreeType) into one atlas; each gets its quad in em units of its
@@ -134,11 +149,11 @@ void OverlayPass::build_labels(const std::vector<ConstellationFigure>& figures, 
     upload_static_labels();
 }
 
-std::vector<float> OverlayPass::label_vertices(const LabelBox& b, const glm::dvec3& anchor) {
+std::vector<float> OverlayPass::label_vertices(const LabelBox& b, const glm::dvec3& anchor, size_t kind) {
     std::vector<float> v;
     const auto vertex = [&](float x, float y, float u, float t) {
         v.insert(v.end(), {static_cast<float>(anchor.x), static_cast<float>(anchor.y), static_cast<float>(anchor.z), x,
-                           y, u, t});
+                           y, u, t, static_cast<float>(kind)});
     };
     const glm::vec4 c = b.corners, uv = b.uv;
     vertex(c.x, c.y, uv.x, uv.y), vertex(c.z, c.y, uv.z, uv.y), vertex(c.x, c.w, uv.x, uv.w);
@@ -146,19 +161,20 @@ std::vector<float> OverlayPass::label_vertices(const LabelBox& b, const glm::dve
     return v;
 }
 
+// The labels that stay put in their overlay's frame, in one buffer in the overlays' order.
 void OverlayPass::upload_static_labels() {
-    std::array<std::vector<float>, kOverlayCount> v;
-    for (size_t i = 0; i < labels_.size(); ++i) {
-        if (labels_[i].body) continue;
-        const auto q = label_vertices(boxes_[i], labels_[i].anchor);
-        auto& dst = v[static_cast<size_t>(labels_[i].kind)];
-        dst.insert(dst.end(), q.begin(), q.end());
-    }
+    std::vector<float> v;
+    constexpr size_t kFloatsPerVertex = 8;
     for (size_t k = 0; k < kOverlayCount; ++k) {
-        if (v[k].empty()) continue;
-        label_buffers_[k] = std::make_unique<GlVertexBuffer>(std::vector<int>{3, 2, 2});
-        label_buffers_[k]->upload(v[k]);
+        label_first_[k] = static_cast<GLint>(v.size() / kFloatsPerVertex);
+        for (size_t i = 0; i < labels_.size(); ++i) {
+            if (labels_[i].body || static_cast<size_t>(labels_[i].kind) != k) continue;
+            const auto q = label_vertices(boxes_[i], labels_[i].anchor, k);
+            v.insert(v.end(), q.begin(), q.end());
+        }
+        label_count_[k] = static_cast<GLsizei>(v.size() / kFloatsPerVertex) - label_first_[k];
     }
+    static_labels_.upload(v);
 }
 
 // The bodies' names at their directions from the camera this frame (not the ground's own body).
@@ -170,7 +186,7 @@ void OverlayPass::update_body_labels() {
         if (!body || *body >= s.bodies.size() || (frames_.ground_body && *frames_.ground_body == *body)) continue;
         const glm::dvec3 to = s.bodies[*body].position_m - s.camera_position_m;
         if (!(glm::length(to) > 0.0)) continue;
-        const auto q = label_vertices(boxes_[i], glm::normalize(to));
+        const auto q = label_vertices(boxes_[i], glm::normalize(to), static_cast<size_t>(OverlayKind::Labels));
         v.insert(v.end(), q.begin(), q.end());
     }
     body_labels_.upload(v);
@@ -191,71 +207,105 @@ glm::vec4 OverlayPass::color_of(size_t k) const {
 }
 
 void OverlayPass::draw(const PassInputs&, int) {
+    if (!set_overlay_uniforms()) return;
     glEnablei(GL_BLEND, 0);
     glBlendFuncSeparatei(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // over; coverage stays
-    const glm::dmat3& to_channel = frame_->view.world_to_channel;
-    const glm::mat4 projection(frame_->view.frustum->projection(0.1, 10.0));
-    for (const GlProgram* p : {&line_program_, &label_program_}) {
-        p->use();
-        p->set("u_projection", projection);
-    }
-    const bool body_labels = frame_->snap->settings.overlay_alpha[static_cast<size_t>(OverlayKind::Labels)] > 0.0f;
-    if (body_labels) update_body_labels();  // only in frames that show them
-    for (size_t k = 0; k < kOverlayCount; ++k) {
-        if (frame_->snap->settings.overlay_alpha[k] <= 0.0f) continue;
-        const auto frame_to_world = frames_.to_world(overlay_frame_of(static_cast<OverlayKind>(k)));
-        if (!frame_to_world) continue;  // the horizon's overlays away from any ground
-        const glm::mat3 m(to_channel * *frame_to_world);
-        if (lines_[k]) draw_lines(k, m, color_of(k));
-        if (label_buffers_[k]) draw_labels(*label_buffers_[k], m, color_of(k));
-        if (static_cast<OverlayKind>(k) == OverlayKind::Labels && body_labels_.vertex_count() > 0)
-            draw_labels(body_labels_, glm::mat3(to_channel), color_of(k));
-    }
+    draw_lines();
+    draw_labels();  // over every line
     glDisablei(GL_BLEND, 0);
     gl::check("overlay pass");
 }
 
-void OverlayPass::draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const {
+bool OverlayPass::set_overlay_uniforms() {
+    std::array<glm::vec4, kOverlayCount> colors{}, line_style{};
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        const auto frame_to_world = frames_.to_world(overlay_frame_of(static_cast<OverlayKind>(k)));
+        // The horizon's overlays have no frame away from any ground.
+        shown_[k] = frame_->snap->settings.overlay_alpha[k] > 0.0f && frame_to_world.has_value();
+        to_channel_[k] = shown_[k] ? glm::mat3(frame_->view.world_to_channel * *frame_to_world) : glm::mat3(1.0f);
+        colors[k] = color_of(k);
+        line_style[k].x = static_cast<float>(0.5 * glm::radians(scene_->overlays.styles[k].width_deg));
+    }
+    if (std::none_of(shown_.begin(), shown_.end(), [](bool b) { return b; })) return false;
+    const glm::mat4 projection(frame_->view.frustum->projection(0.1, 10.0));
+    for (const GlProgram* p : {&line_program_, &label_program_}) {
+        p->use();
+        p->set("u_projection", projection);
+        p->set("u_to_channel", to_channel_.data(), static_cast<int>(kOverlayCount));
+        p->set("u_color", colors.data(), static_cast<int>(kOverlayCount));
+    }
     line_program_.use();
-    line_program_.set("u_to_channel", to_channel);
-    line_program_.set("u_half_width_rad", static_cast<float>(0.5 * glm::radians(scene_->overlays.styles[k].width_deg)));
+    line_program_.set("u_line", line_style.data(), static_cast<int>(kOverlayCount));
     // Room for the ramp, which reaches half of fwidth(s) past the edge: fwidth is |ds/dx| + |ds/dy|, up
     // to sqrt(2) pixels' angle for a diagonal line (at the widest pixel); and the chord's sag below
     // an arc of the longest step.
     line_program_.set("u_margin_rad", 0.75f * pixel_rad_ + 1.6e-4f);
-    line_program_.set("u_color", color);
+    label_program_.use();
+    label_program_.set("u_up", glm::vec3(frame_->view.world_to_channel * frames_.label_up_world));
+    return true;
+}
+
+// Every shown overlay's arcs that can touch the channel, in one draw: the chunks first, then the
+// arcs of those that touch it one by one (a CPU rasteriser pays for every triangle it is given).
+void OverlayPass::draw_lines() {
+    if (!lines_) return;
     offsets_.clear();
     counts_.clear();
-    const glm::dvec4 tangents(frame_->view.tangents());
-    for (const ArcChunk& c : chunks_[k]) {
-        if (!cone_touches_frustum(glm::dvec3(to_channel * glm::vec3(c.centre)), c.radius_rad + kCullSlack_rad,
-                                  tangents))
-            continue;
-        const size_t first_index = 6 * static_cast<size_t>(c.first_arc);
-        if (!counts_.empty() && next_index_ == first_index) {
-            counts_.back() += 6 * c.arc_count;  // runs next to each other: one draw
-        } else {
-            offsets_.push_back(reinterpret_cast<const void*>(first_index * sizeof(GLuint)));
-            counts_.push_back(6 * c.arc_count);
-        }
-        next_index_ = first_index + 6 * static_cast<size_t>(c.arc_count);
-        arcs_drawn_ += c.arc_count;
+    const FrustumSides sides(frame_->view.tangents());
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        if (!shown_[k]) continue;
+        for (const ArcChunk& c : chunks_[k])
+            if (sides.touched_by(glm::dvec3(to_channel_[k] * glm::vec3(c.centre)), c.radius_rad + kCullSlack_rad))
+                add_visible_arcs(c, to_channel_[k], sides);
     }
     if (counts_.empty()) return;
-    lines_[k]->bind();
+    line_program_.use();
+    lines_->bind();
     glMultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(),
                         static_cast<GLsizei>(counts_.size()));
 }
 
-void OverlayPass::draw_labels(const GlVertexBuffer& vb, const glm::mat3& to_channel, const glm::vec4& color) const {
+void OverlayPass::add_visible_arcs(const ArcChunk& c, const glm::mat3& to_channel, const FrustumSides& sides) {
+    for (int i = c.first_arc; i < c.first_arc + c.arc_count; ++i) {
+        const glm::vec4& cone = arc_cones_[static_cast<size_t>(i)];
+        if (!sides.touched_by(glm::dvec3(to_channel * glm::vec3(cone)), cone.w + kCullSlack_rad)) continue;
+        const size_t first_index = 6 * static_cast<size_t>(i);
+        if (!counts_.empty() && next_index_ == first_index) {
+            counts_.back() += 6;  // arcs next to each other in the buffer: one run
+        } else {
+            offsets_.push_back(reinterpret_cast<const void*>(first_index * sizeof(GLuint)));
+            counts_.push_back(6);
+        }
+        next_index_ = first_index + 6;
+        ++arcs_drawn_;
+    }
+}
+
+// The shown overlays' fixed labels in one draw, then the bodies' (placed this frame).
+void OverlayPass::draw_labels() {
+    std::array<GLint, kOverlayCount> first{};
+    std::array<GLsizei, kOverlayCount> count{};
+    GLsizei draws = 0;
+    for (size_t k = 0; k < kOverlayCount; ++k) {
+        if (!shown_[k] || label_count_[k] == 0) continue;
+        first[draws] = label_first_[k];
+        count[draws++] = label_count_[k];
+    }
+    const auto labels = static_cast<size_t>(OverlayKind::Labels);
+    const bool bodies = shown_[labels];
+    if (bodies) update_body_labels();  // only in frames that show them
+    if (draws == 0 && !(bodies && body_labels_.vertex_count() > 0)) return;
     label_program_.use();
-    label_program_.set("u_to_channel", to_channel);
-    label_program_.set("u_up", glm::vec3(frame_->view.world_to_channel * frames_.label_up_world));
-    label_program_.set("u_color", color);
     atlas_->bind(0);
     label_program_.set("u_atlas", 0);
-    vb.bind();
-    glDrawArrays(GL_TRIANGLES, 0, vb.vertex_count());
+    if (draws > 0) {
+        static_labels_.bind();
+        glMultiDrawArrays(GL_TRIANGLES, first.data(), count.data(), draws);
+    }
+    if (bodies && body_labels_.vertex_count() > 0) {
+        body_labels_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, body_labels_.vertex_count());
+    }
 }
 
 }  // namespace cupola

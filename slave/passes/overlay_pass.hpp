@@ -8,6 +8,10 @@
 // with FreeType's glyphs (passes/text_raster.hpp) from one atlas, mipmapped.
 // Colours are display colours: drawn as colour / exposure, they show at the level asked for
 // whatever the exposure. Each overlay's opacity is the snapshot's (the master fades it).
+// Every overlay's lines are in one buffer and every label in another, each vertex naming its
+// overlay (whose frame, colour and width are uniform arrays): a frame draws all the lines in one
+// call and the labels in two, and gives the GPU only the arcs that can touch the channel (the runs
+// of arcs first, then arc by arc within the runs that do).
 #include <array>
 #include <memory>
 #include <vector>
@@ -48,24 +52,33 @@ private:
     void build_labels(const std::vector<ConstellationFigure>& figures, const std::vector<Star>& stars);
     void upload_static_labels();
     void update_body_labels();
-    void draw_lines(size_t k, const glm::mat3& to_channel, const glm::vec4& color) const;
-    void draw_labels(const GlVertexBuffer& vb, const glm::mat3& to_channel, const glm::vec4& color) const;
+    // Each overlay's frame and colour this frame, for both programs; false where none is shown.
+    bool set_overlay_uniforms();
+    // The arcs of a chunk that can touch the channel, as runs of the draw.
+    void add_visible_arcs(const ArcChunk& c, const glm::mat3& to_channel, const FrustumSides& sides);
+    void draw_lines();
+    void draw_labels();
     glm::vec4 color_of(size_t k) const;
-    static std::vector<float> label_vertices(const LabelBox& box, const glm::dvec3& anchor);
+    static std::vector<float> label_vertices(const LabelBox& box, const glm::dvec3& anchor, size_t kind);
 
     const SceneConfig* scene_;
     GlProgram line_program_, label_program_;
-    std::array<std::unique_ptr<GlVertexBuffer>, kOverlayCount> lines_;
+    std::unique_ptr<GlVertexBuffer> lines_;  // every overlay's arcs, one after the other
     std::array<size_t, kOverlayCount> arcs_{};
-    std::array<std::vector<ArcChunk>, kOverlayCount> chunks_;
-    mutable std::vector<const void*> offsets_;  // byte offsets into a line buffer's indices
-    mutable size_t next_index_ = 0;
-    mutable std::vector<GLsizei> counts_;
-    mutable long arcs_drawn_ = 0;
+    std::array<std::vector<ArcChunk>, kOverlayCount> chunks_;  // first_arc: in lines_
+    std::vector<glm::vec4> arc_cones_;                         // every arc's (overlay frame), as in lines_
+    std::array<bool, kOverlayCount> shown_{};                  // this frame: visible, with its frame
+    std::array<glm::mat3, kOverlayCount> to_channel_{};        // this frame: overlay frame -> channel
+    std::vector<const void*> offsets_;                         // byte offsets into the line buffer's indices
+    size_t next_index_ = 0;
+    std::vector<GLsizei> counts_;
+    long arcs_drawn_ = 0;
     std::vector<OverlayLabel> labels_;
     std::vector<LabelBox> boxes_;  // one per label
     std::unique_ptr<GlTexture> atlas_;
-    std::array<std::unique_ptr<GlVertexBuffer>, kOverlayCount> label_buffers_;  // static labels, by overlay
+    GlVertexBuffer static_labels_;  // every label but the bodies', by overlay
+    std::array<GLint, kOverlayCount> label_first_{};
+    std::array<GLsizei, kOverlayCount> label_count_{};
     GlVertexBuffer body_labels_;
     const FrameContext* frame_ = nullptr;
     OverlayFrames frames_;
