@@ -55,6 +55,23 @@ double marched_horizon(const terrain::Relief& relief, const glm::dvec3& d, doubl
     return best;
 }
 
+// The Earth with a cone 2000 m high, 0.5 degrees in radius, at 45.5 N 10.25 E (a GeoTIFF the test
+// writes) and no procedural relief.
+terrain::BodyRelief cone_relief(const std::string& tag) {
+    const std::string dir = test::scratch_dir(tag);
+    const auto cone = [](double lon, double lat) {
+        return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
+    };
+    SceneConfig sc = test::earth_moon_scene();
+    BodyConfig& earth = sc.bodies[sc.find("earth")->id];
+    earth.terrain.present = true;
+    earth.terrain.procedural_amplitude_m = 0.0;  // the cone alone
+    earth.terrain.elevation = test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, 0.01, cone);
+    terrain::BodyRelief opened = terrain::open_body_relief(earth);
+    EXPECT_TRUE(opened.fallback.empty()) << opened.fallback;
+    return opened;
+}
+
 }  // namespace
 
 TEST(TerrainHorizon, PackingKeepsEverySineToAQuarterOfAMilli) {
@@ -92,17 +109,7 @@ TEST(TerrainHorizon, TheSunIsSeenAboveTheHorizonInItsAzimuth) {
 // across west of it lies partly in its shadow. Its horizon map agrees with a ray march toward the
 // Sun's exact azimuth over the finest relief, except within the shadow's soft edge.
 TEST(TerrainHorizon, ATilesHorizonMapShadowsAConesLeeAsARayMarchDoes) {
-    const std::string dir = test::scratch_dir("terrain_horizon_cone");
-    const auto cone = [](double lon, double lat) {
-        return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
-    };
-    SceneConfig sc = test::earth_moon_scene();
-    BodyConfig& earth = sc.bodies[sc.find("earth")->id];
-    earth.terrain.present = true;
-    earth.terrain.procedural_amplitude_m = 0.0;  // the cone alone
-    earth.terrain.elevation = test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, 0.01, cone);
-    const terrain::BodyRelief opened = terrain::open_body_relief(earth);
-    ASSERT_TRUE(opened.fallback.empty()) << opened.fallback;
+    const terrain::BodyRelief opened = cone_relief("terrain_horizon_cone");
     const terrain::Relief& relief = *opened.relief;
     const glm::dvec3 lee = terrain::lat_lon_to_direction(test::centric_deg(45.5) * kDeg, (10.25 - 0.65) * kDeg);
     const terrain::TileMesh mesh = terrain::build_tile_mesh(terrain::tile_at(lee, 8), relief, 32, true);
@@ -130,4 +137,33 @@ TEST(TerrainHorizon, ATilesHorizonMapShadowsAConesLeeAsARayMarchDoes) {
     EXPECT_GT(shadowed, counted / 10) << "the tile must lie partly in the cone's shadow";
     EXPECT_GT(lit, counted / 10) << "and partly in the light";
     EXPECT_LE(wrong, counted * 3 / 100) << wrong << " of " << counted << " vertices (" << on_edge << " on the edge)";
+}
+
+// A tile 2.4 km across, 0.9 degrees (70 km) west of the cone's top: the cone lies past 16 tile
+// widths, among the samples the tile takes once for all its points. At every point where the map is computed (every
+// fourth vertex) it agrees in every azimuth with the point's own samples of the relief (horizon_sines) within 0.002 in
+// sine, a fifth of the shadow's soft edge; and toward the cone the horizon stands above 1 degree.
+TEST(TerrainHorizon, TheTilesSharedFarSamplesGiveEveryPointItsOwnHorizon) {
+    const terrain::BodyRelief opened = cone_relief("terrain_horizon_far");
+    const terrain::Relief& relief = *opened.relief;
+    const glm::dvec3 west = terrain::lat_lon_to_direction(test::centric_deg(45.5) * kDeg, (10.25 - 0.9) * kDeg);
+    const int level = 12, segments = 32;
+    const terrain::TileMesh mesh = terrain::build_tile_mesh(terrain::tile_at(west, level), relief, segments, true);
+    const double spacing = terrain::tile_spacing_m(level, segments, mesh.radius_m);
+    ASSERT_LT(16.0 * segments * spacing, 40e3) << "the cone's top must lie among the shared samples";
+    const double reach = std::max(terrain::horizon_reach_m(relief), 4.0 * spacing);
+    double worst = 0.0, toward_cone = -1.0;
+    for (int j = 0; j <= segments; j += segments / 8)
+        for (int i = 0; i <= segments; i += segments / 8) {
+            const size_t k = mesh.index(i, j);
+            const terrain::HorizonSines own =
+                terrain::horizon_sines(relief, mesh.directions[k], mesh.height_m[k], spacing, reach);
+            for (int a = 0; a < terrain::kHorizonDirections; ++a)
+                worst = std::max(worst, std::abs(sh::terrain_horizon_sine(mesh.horizon[k], a) - own[a]));
+            toward_cone = std::max(toward_cone, own[0]);  // azimuth 0: east
+        }
+    std::printf("shared far samples: worst sine difference %.5f; horizon toward the cone up to %.2f degrees\n", worst,
+                glm::degrees(std::asin(toward_cone)));
+    EXPECT_GT(toward_cone, std::sin(1.0 * kDeg));
+    EXPECT_LT(worst, 0.002);
 }

@@ -13,9 +13,8 @@ uint64_t mix(uint64_t z) {  // splitmix64's finaliser (Steele, Lea and Flood 201
     return z ^ (z >> 31);
 }
 
-double lattice_gradient_dot(int64_t ix, int64_t iy, int64_t iz, uint64_t seed, const glm::dvec3& f) {
-    const uint64_t h =
-        mix(mix(mix(seed ^ static_cast<uint64_t>(ix)) ^ static_cast<uint64_t>(iy)) ^ static_cast<uint64_t>(iz));
+// The gradient of the lattice point whose hash is h, dotted with the offset f from it.
+double gradient_dot(uint64_t h, const glm::dvec3& f) {
     static constexpr double g[12][3] = {{1, 1, 0},  {-1, 1, 0},  {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
                                         {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1},  {0, 1, -1}, {0, -1, -1}};
     const double* v = g[h % 12];
@@ -26,7 +25,7 @@ double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
 // The weight of an octave of wavelength lambda in a mesh of spacing h: 1 down to 8h, 0 at 4h.
 double octave_weight(double lambda, double h) {
-    if (h <= 0.0) return 1.0;
+    if (h <= 0.0 || lambda >= 8.0 * h) return 1.0;  // (log2 of 2 or more: the same 1)
     return std::clamp(std::log2(lambda / (4.0 * h)), 0.0, 1.0);
 }
 
@@ -37,11 +36,19 @@ double gradient_noise(const glm::dvec3& p, uint64_t seed) {
     const glm::dvec3 f = p - cell;
     const auto ix = static_cast<int64_t>(cell.x), iy = static_cast<int64_t>(cell.y), iz = static_cast<int64_t>(cell.z);
     const glm::dvec3 w(fade(f.x), fade(f.y), fade(f.z));
+    // A lattice point's hash is mix(mix(mix(seed ^ x) ^ y) ^ z): the x and (x, y) stages are
+    // shared by the corners that have them in common (14 mixes for the 8 corners, not 24).
+    uint64_t hx[2], hxy[2][2];
+    for (int dx = 0; dx < 2; ++dx) {
+        hx[dx] = mix(seed ^ static_cast<uint64_t>(ix + dx));
+        for (int dy = 0; dy < 2; ++dy) hxy[dx][dy] = mix(hx[dx] ^ static_cast<uint64_t>(iy + dy));
+    }
     double x_lerp[2][2];
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy) {
-            const double a = lattice_gradient_dot(ix, iy + dy, iz + dz, seed, f - glm::dvec3(0, dy, dz));
-            const double b = lattice_gradient_dot(ix + 1, iy + dy, iz + dz, seed, f - glm::dvec3(1, dy, dz));
+            const uint64_t z = static_cast<uint64_t>(iz + dz);
+            const double a = gradient_dot(mix(hxy[0][dy] ^ z), f - glm::dvec3(0, dy, dz));
+            const double b = gradient_dot(mix(hxy[1][dy] ^ z), f - glm::dvec3(1, dy, dz));
             x_lerp[dz][dy] = a + w.x * (b - a);
         }
     const double y0 = x_lerp[0][0] + w.y * (x_lerp[0][1] - x_lerp[0][0]);

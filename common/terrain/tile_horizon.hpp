@@ -16,7 +16,10 @@
 //   tan 1 degree, at most 5 % of the radius and at least 4 vertex spacings.
 // - Cost: the horizon is computed at every stride-th vertex (stride = segments / 8: 9 x 9 points
 //   for 32 segments) and interpolated bilinearly between, so shadows are resolved to a few
-//   vertex spacings. Deterministic from the tile's key: every node of a cluster computes the same.
+//   vertex spacings. The samples 16 tile widths away or more are taken once for the whole tile,
+//   along the azimuths from its centre; each point measures its own elevation to them. Samples
+//   that fall on the tile take the heights of its mesh (what is drawn there).
+//   Deterministic from the tile's key: every node of a cluster computes the same.
 #include <glm/glm.hpp>
 
 #include <array>
@@ -34,7 +37,8 @@ using HorizonSines = std::array<double, kHorizonDirections>;
 // How far the horizon is searched (m along the ground).
 double horizon_reach_m(const Relief& relief);
 
-// The horizon seen from the point at unit direction d (body-fixed), height h0_m above the sphere.
+// The horizon seen from the point at unit direction d (body-fixed), height h0_m above the sphere,
+// every sample its own (samples below reach_m).
 HorizonSines horizon_sines(const Relief& relief, const glm::dvec3& d, double h0_m, double first_step_m, double reach_m);
 
 // Eight sines in [-1, 1] as four floats, two 12-bit values in each (exact in a float's 24-bit
