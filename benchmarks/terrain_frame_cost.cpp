@@ -8,7 +8,10 @@
 // one (every tile build sleeps --slow-ms first, as a slow disk would): the render loop's frame
 // times (median and 90th percentile) must not follow the source, and the frames that drew
 // stand-ins are counted.
-//   build/bin/terrain_frame_cost [--size 256] [--frames 5] [--path 40] [--slow-ms 20]
+// With --glare the camera looks west at the Sun and the snapshot carries its glare sources (as the
+// master selects them), so the glare probe runs; its pass, timed with a wait after it, is given per case (the relief
+// hides the Sun from the probe as it hides it in the frame: TerrainDrawer::draw_depth).
+//   build/bin/terrain_frame_cost [--size 256] [--frames 5] [--path 40] [--slow-ms 20] [--glare]
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -26,6 +29,7 @@
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_framebuffer.hpp"
 #include "gl/gl_program.hpp"
+#include "glare/glare_sources.hpp"
 #include "passes/terrain_drawer.hpp"
 #include "scene_renderer.hpp"
 #include "terrain/cube_sphere.hpp"
@@ -48,6 +52,19 @@ double percentile(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
 
+// The glare probe's pass (ms, with a wait after it), the median of five frames; 0 without one.
+double probe_ms(SceneRenderer& r, const Snapshot& snap) {
+    std::vector<double> t;
+    r.set_pass_timing(true);
+    for (int i = 0; i < 5; ++i) {
+        r.render(snap);
+        for (const auto& [name, ms] : r.last_frame_timings().passes_ms)
+            if (name == "glare probe") t.push_back(ms);
+    }
+    r.set_pass_timing(false);
+    return t.empty() ? 0.0 : percentile(t, 0.5);
+}
+
 SceneConfig scene_with_terrain(const std::string& file, bool terrain, double budget_px) {
     SceneConfig s = load_scene_config(file);
     for (auto& b : s.bodies) {
@@ -62,9 +79,9 @@ SceneConfig scene_with_terrain(const std::string& file, bool terrain, double bud
     return s;
 }
 
-// The camera height_m above the ground at (46 N, 7.7 E) looking north-west and 10 degrees down,
-// the Sun 8 degrees up in the west.
-Snapshot evening_view(const SceneConfig& s, double height_m) {
+// The camera height_m above the ground at (46 N, 7.7 E) looking north-west and 10 degrees down
+// (toward_sun: west, toward the Sun, and 6 degrees down), the Sun 8 degrees up in the west.
+Snapshot evening_view(const SceneConfig& s, double height_m, bool toward_sun = false) {
     Snapshot snap;
     snap.bodies.resize(s.bodies.size());
     for (auto& b : snap.bodies) b.id = static_cast<uint16_t>(&b - snap.bodies.data());
@@ -78,7 +95,8 @@ Snapshot evening_view(const SceneConfig& s, double height_m) {
     snap.camera_position_m = up * (r + ground.ground_height_m(earth, up * r) + height_m);
     snap.bodies[s.find("sun")->id].position_m = 1.495978707e11 * glm::normalize(-east + 0.14 * up);
     snap.bodies[s.find("moon")->id].position_m = 3.844e8 * glm::normalize(east - 0.3 * up);
-    const glm::dvec3 fwd = glm::normalize(north - east - 0.25 * up), right = glm::normalize(glm::cross(fwd, up));
+    const glm::dvec3 fwd = toward_sun ? glm::normalize(-east - 0.1 * up) : glm::normalize(north - east - 0.25 * up);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, up));
     snap.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(right, fwd), -fwd));
     return snap;
 }
@@ -94,6 +112,8 @@ int main(int argc, char** argv) {
     app.add_option("--path", path, "frames of the streaming descent")->check(CLI::Range(4, 100000));
     app.add_option("--slow-ms", slow_ms, "the slow source's delay per tile")->check(CLI::Range(1, 10000));
     app.add_option("--scene", scene_file, "scene with an 'earth'")->check(CLI::ExistingFile);
+    bool glare = false;
+    app.add_flag("--glare", glare, "the snapshot carries its glare sources: the glare probe runs (timed)");
     if (auto rc = parse_command_line(app, argc, argv, "terrain_frame_cost")) return *rc;
     ClusterConfig cluster;
     ChannelConfig ch;
@@ -122,7 +142,8 @@ int main(int argc, char** argv) {
     std::vector<std::unique_ptr<SceneRenderer>> renderers;
     std::vector<SceneConfig> scenes;
     for (double b : budgets) scenes.push_back(scene_with_terrain(scene_file, b > 0.0, b > 0.0 ? b : 1.0));
-    const Snapshot snap = evening_view(scenes[1], 1500.0);
+    Snapshot snap = evening_view(scenes[1], 1500.0, glare);
+    if (glare) snap.glare = GlareSources(scenes[1], nullptr).select(snap);
     for (const SceneConfig& s : scenes) {
         renderers.push_back(std::make_unique<SceneRenderer>(cluster, ch, s));
         renderers.back()->render(snap);
@@ -143,16 +164,21 @@ int main(int argc, char** argv) {
                                 frames);
     }
     const double t_trivial = percentile(ms[0], 0.5), t_smooth = percentile(ms[1], 0.5);
-    std::printf("trivial full-screen pass %.3f ms; frame with the smooth sphere %.2f ms (%.1f trivial passes)\n\n",
+    std::printf("trivial full-screen pass %.3f ms; frame with the smooth sphere %.2f ms (%.1f trivial passes)\n",
                 t_trivial, t_smooth, t_smooth / t_trivial);
-    std::printf("| budget px | cut tiles | triangles drawn | ms/frame | frame / trivial | terrain extra / trivial |\n");
-    std::printf("|---|---|---|---|---|---|\n");
+    if (glare) std::printf("glare probe with the smooth sphere: %.3f ms\n", probe_ms(*renderers[0], snap));
+    std::printf(
+        "\n| budget px | cut tiles | triangles drawn | ms/frame | frame / trivial | terrain extra / trivial |%s\n",
+        glare ? " glare probe ms |" : "");
+    std::printf("|---|---|---|---|---|---|%s\n", glare ? "---|" : "");
     const uint16_t earth = scenes[1].find("earth")->id;
     for (size_t i = 1; i < budgets.size(); ++i) {
         const TerrainFrameStats& st = renderers[i]->terrain().last_frame(earth);
         const double t = percentile(ms[i + 1], 0.5);
-        std::printf("| %.1f | %zu | %zu | %.2f | %.1f | %.1f |\n", budgets[i], st.cut_tiles, st.triangles, t,
+        std::printf("| %.1f | %zu | %zu | %.2f | %.1f | %.1f |", budgets[i], st.cut_tiles, st.triangles, t,
                     t / t_trivial, (t - t_smooth) / t_trivial);
+        if (glare) std::printf(" %.3f |", probe_ms(*renderers[i], snap));
+        std::printf("\n");
     }
 
     // Streaming: a descent from 20 km to 200 m, fresh renderers, the fast source then the slow one.

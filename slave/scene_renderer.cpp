@@ -101,6 +101,7 @@ struct SceneRenderer::Impl {
         // occlude (the atmosphere).
         if (scene.glare.enabled)
             glare_probe = &add(std::make_unique<GlareProbe>(cluster, ch, scene, painter->bodies(), shadows));
+        if (glare_probe) glare_probe->set_terrain(&painter->terrain());
         // The glare's halo at reduced resolution into its own target.
         GlareHaloPass* halo = nullptr;
         if (scene.glare.enabled && scene.glare.halo_downsample > 1)

@@ -184,6 +184,15 @@ TEST(TileMesh, SkirtsHangBelowTheEdgeAndTheParentShapeMatchesTheParentsMesh) {
     // Floats relative to the centre: a tile at level 9 is about 20 km across, the positions are
     // within it (not planet-sized numbers that lose their metres in a float).
     for (const auto& g : v) EXPECT_LT(glm::length(g.position), 30e3f);
+    // Every vertex, in its own shape and its parent's, the skirt too, lies within the mesh's bound,
+    // and the bound is tight (within the skirt's depth and a metre of the farthest vertex).
+    double farthest = 0.0;
+    for (const auto& g : v)
+        for (const glm::vec3 p : {g.position, g.position + g.parent_delta}) {
+            EXPECT_LE(glm::length(glm::dvec3(p)), m.bound_radius_m);
+            farthest = std::max(farthest, static_cast<double>(glm::length(p)));
+        }
+    EXPECT_LT(m.bound_radius_m, farthest + m.skirt_depth_m + 1.0);
 }
 
 TEST(TileMesh, NormalsFollowTheSlopeAndNeighboursAgreeAlongTheirEdge) {

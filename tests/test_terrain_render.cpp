@@ -21,6 +21,7 @@
 
 #include "config/cluster_config.hpp"
 #include "config/scene_config.hpp"
+#include "glare/glare_sources.hpp"
 #include "image/frame_image.hpp"
 #include "passes/terrain_drawer.hpp"
 #include "scene_renderer.hpp"
@@ -51,6 +52,22 @@ SceneConfig terrain_scene(const std::string& elevation = "") {
     earth.terrain.procedural_amplitude_m = 3000.0;
     earth.terrain.seed = 7;
     earth.terrain.elevation = elevation;
+    return sc;
+}
+
+// The cone of these tests: 2000 m high at (lon 10.25, lat 45.5 geodetic), 0.5 degrees in radius.
+double cone_height_m(double lon, double lat) {
+    return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
+}
+
+// The Earth as that cone alone (a GeoTIFF of 0.01 degree samples, no procedural relief) and without
+// air: the Sun's light alone, so a shadow is black.
+SceneConfig lone_cone_scene(const std::string& tag) {
+    const std::string dir = test::scratch_dir(tag);
+    SceneConfig sc = terrain_scene(test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, 0.01, cone_height_m));
+    BodyConfig& earth = sc.bodies[sc.find("earth")->id];
+    earth.terrain.procedural_amplitude_m = 0.0;
+    earth.atmosphere.present = false;
     return sc;
 }
 
@@ -286,10 +303,7 @@ TEST(TerrainRender, AConeInAGeoTiffIsDrawnAtItsLatitudeAndLongitudeWithinOneSamp
     const std::string dir = test::scratch_dir("terrain_render_cone");
     const double step = 0.01;  // degrees
     // A cone 2000 m high at (lon 10.25, lat 45.5 geodetic), 0.5 degrees across its base.
-    const auto cone = [](double lon, double lat) {
-        return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
-    };
-    const std::string file = test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, step, cone);
+    const std::string file = test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, step, cone_height_m);
     SceneConfig sc = terrain_scene(file);
     sc.bodies[sc.find("earth")->id].terrain.procedural_amplitude_m = 0.0;  // the cone alone
     const ChannelConfig ch = channel("down", FovDeg{15, 15, 15, 15}, 128, 128);
@@ -406,14 +420,8 @@ TEST(TerrainRender, OneMetreAboveTheGroundAtOneAuItDrawsWhatItDrawsAtTheOrigin) 
 // toward the Sun over the relief finds in the cone's shadow is dark; flat ground in the open beside it is lit.
 TEST(TerrainRender, AtALowSunTheReliefCastsShadowsWhereARayMarchFindsThem) {
     context();
-    const std::string dir = test::scratch_dir("terrain_render_shadow");
-    const auto cone = [](double lon, double lat) {
-        return std::max(0.0, 2000.0 * (1.0 - std::hypot(lon - 10.25, lat - 45.5) / 0.5));
-    };
-    SceneConfig sc = terrain_scene(test::write_geotiff(dir + "/cone.tif", 150, 100, 9.5, 46.0, 0.01, cone));
-    BodyConfig& earth = sc.bodies[earth_id(sc)];
-    earth.terrain.procedural_amplitude_m = 0.0;
-    earth.atmosphere.present = false;  // the Sun's light alone: a shadow is black
+    const SceneConfig sc = lone_cone_scene("terrain_render_shadow");
+    const BodyConfig& earth = sc.bodies[earth_id(sc)];
     const terrain::BodyRelief relief = terrain::open_body_relief(earth);
     const ChannelConfig ch = channel("down", FovDeg{20, 20, 20, 20}, 96, 96);
     const double radius = earth.radius_m;
@@ -481,4 +489,51 @@ TEST(TerrainRender, ABodyIsReliefWithinTenRadiiAndNeverWhenTheSkyIsDrawnFirst) {
     b.body = smooth.find("earth");
     f.view.camera_position_m = glm::dvec3(0.0, 0.0, 1.1 * earth.radius_m);
     EXPECT_FALSE(draws_terrain(f, b));
+}
+
+namespace {
+
+// The share of the Sun's disc the glare probe finds visible, once the tiles are built and the
+// queries read back (a few frames of the same snapshot).
+double sun_visible_fraction(SceneRenderer& r, const SceneConfig& sc, const Snapshot& s) {
+    render_settled(r, s);
+    for (int i = 0; i < 3; ++i) r.render(s);
+    for (const GlareMeasurement& m : r.glare_measurements())
+        if (m.body == sc.find("sun")->id && m.total_sr > 0.0f) return m.visible_total_sr() / m.total_sr;
+    ADD_FAILURE() << "no measurement of the Sun";
+    return -1.0;
+}
+
+}  // namespace
+
+// 10 m above flat ground 50 km west of a 2000 m cone, looking east: with the Sun 1 degree up the
+// cone (2.1 degrees high from there) hides all of its disc from the glare probe, as it hides it in
+// the image; the smooth sphere would not; with the Sun 4 degrees up, above the cone, all of it is seen.
+TEST(TerrainRender, AMountainHidesTheSunsGlareWhereTheSphereWouldNot) {
+    context();
+    const SceneConfig sc = lone_cone_scene("terrain_render_glare");
+    const BodyConfig& earth = sc.bodies[earth_id(sc)];
+    ASSERT_TRUE(sc.glare.enabled);
+    const ChannelConfig ch = channel("east", FovDeg{20, 20, 20, 20}, 64, 64);
+    const Place lee = place(test::centric_deg(45.5), 10.25 - 0.65);
+    const glm::dvec3 camera = lee.up * (earth.radius_m + 10.0);
+    const glm::dvec3 forward = glm::normalize(lee.east + std::tan(2.0 * kDeg) * lee.up);
+    const auto sun_at = [&](double el_deg) {
+        Snapshot s = snapshot(sc, glm::dvec3(0.0), camera, forward, lee.up,
+                              glm::normalize(lee.east + std::tan(el_deg * kDeg) * lee.up));
+        s.glare = GlareSources(sc, nullptr).select(s);
+        return s;
+    };
+    SceneRenderer relief(cluster_of({ch}), ch, sc);
+    const double hidden = sun_visible_fraction(relief, sc, sun_at(1.0));
+    const double above = sun_visible_fraction(relief, sc, sun_at(4.0));
+    SceneConfig smooth = sc;
+    smooth.bodies[earth_id(sc)].terrain.present = false;
+    SceneRenderer sphere(cluster_of({ch}), ch, smooth);
+    const double over_the_sphere = sun_visible_fraction(sphere, smooth, sun_at(1.0));
+    std::printf("Sun's disc seen: %.3f behind the cone, %.3f above it, %.3f over the smooth sphere\n", hidden, above,
+                over_the_sphere);
+    EXPECT_LT(hidden, 0.02);
+    EXPECT_GT(above, 0.98);
+    EXPECT_GT(over_the_sphere, 0.98);
 }

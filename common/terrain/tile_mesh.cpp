@@ -111,6 +111,12 @@ TileMesh build_tile_mesh(const TileKey& key, const Relief& relief, int segments,
     const double coarse = 4.0 * spacing;
     m.skirt_depth_m =
         relief.mesh_error_m(spacing) + relief.mesh_error_m(coarse) + coarse * coarse / (4.0 * m.radius_m) + 1.0;
+    // Every vertex, own or parent shape, skirt included, within the bound.
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            m.bound_radius_m = std::max({m.bound_radius_m, glm::length(m.position_m(i, j) - m.centre_m),
+                                         glm::length(m.parent_position_m(i, j) - m.centre_m)});
+    m.bound_radius_m += m.skirt_depth_m;
     if (horizon) m.horizon = tile_horizon(m, relief);
     return m;
 }

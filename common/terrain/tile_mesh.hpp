@@ -32,8 +32,9 @@ struct TileMesh {
     // The relief's horizon at each grid vertex, packed (terrain/tile_horizon.hpp); empty when the
     // mesh was built without it (the GPU then sees every vertex in the open).
     std::vector<glm::vec4> horizon;
-    double skirt_depth_m = 0.0;  // how far the skirt hangs below the edge
-    double radius_m = 0.0;       // the body's reference sphere
+    double skirt_depth_m = 0.0;   // how far the skirt hangs below the edge
+    double bound_radius_m = 0.0;  // every vertex (either shape, the skirt too) lies within this of centre_m
+    double radius_m = 0.0;        // the body's reference sphere
     int vertices_per_side() const { return segments + 1; }
     // The grid point (i along u, j along v).
     size_t index(int i, int j) const { return static_cast<size_t>(j) * (segments + 1) + i; }

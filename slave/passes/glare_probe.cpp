@@ -173,12 +173,22 @@ void GlareProbe::draw_occluders(const Snapshot& snap, const GlareSource& src, co
         if (b.kind == BodyKind::Star || st.id == src.body) continue;
         const SphereView sphere = make_sphere_view(probe.view, st.position_m, b.radius_m);
         if (sphere.distance_m - b.radius_m >= source_near_m) continue;  // behind the source
+        if (draw_relief(st, probe)) continue;
         // Outside the probe's cone altogether?
         const double off = 2.0 * std::asin(std::min(1.0, 0.5 * glm::length(sphere.center_dir - glm::dvec3(0, 0, -1))));
         if (!sphere.fullscreen() && off > std::atan(probe.t * 1.5) + std::asin(std::min(sphere.sin_alpha, 1.0)))
             continue;
         bodies.draw(probe.view, b, st, sphere, light, shadows, no_casters);
     }
+}
+
+bool GlareProbe::draw_relief(const BodyState& st, const View& probe) {
+    if (!terrain_ || !frame_ || frame_->snap == nullptr || !terrain_->has_terrain(st.id)) return false;
+    const auto it = std::find_if(frame_->far_to_near.begin(), frame_->far_to_near.end(),
+                                 [&](const FrameBody& fb) { return fb.state->id == st.id; });
+    if (it == frame_->far_to_near.end() || !draws_terrain(*frame_, *it)) return false;
+    terrain_->draw_depth(*frame_, probe.view, *it);
+    return true;
 }
 
 // The source's disc counted without depth test (the total), then with it per wedge (the visible

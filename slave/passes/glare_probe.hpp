@@ -2,8 +2,9 @@
 // Glare visibility measured where it is rendered (Ekelin & Fernqvist 2009, sections 3.1.1 and
 // 3.1.3), in the pass list between the occluders and what does not occlude (occluders -> query ->
 // atmosphere -> glare). For each glare source of the
-// snapshot whose disc may reach this channel, the probe draws the occluders (the bodies, depth
-// only, by true distance) into a small view centred on the source, then counts the source's
+// snapshot whose disc may reach this channel, the probe draws the occluders (the bodies, and a
+// body drawn as relief this frame as its relief's tiles; depth only, by true distance) into a
+// small view centred on the source, then counts the source's
 // disc with two kinds of occlusion query: without depth test (the total) and with it, per wedge
 // (the visible part). A direction counts only in the channel that owns it, so the master can sum
 // the channels' results. The view is as sharp for a sun of two dome pixels as for one that
@@ -20,6 +21,7 @@
 #include "gl/gl_program.hpp"
 #include "passes/body_pass.hpp"
 #include "passes/render_pass.hpp"
+#include "passes/terrain_drawer.hpp"
 #include "wire/reports.hpp"
 #include "wire/snapshot.hpp"
 
@@ -63,6 +65,9 @@ public:
     // mode): nothing when the channel did not see it.
     std::optional<float> own_fraction(const GlareSource& source) const;
     const GlareProbeCounts& counts() const { return counts_; }
+    // The relief (the painter's terrain drawer): a body drawn as relief this frame occludes as its
+    // relief, not as its sphere, so a mountain hides the Sun's glare.
+    void set_terrain(TerrainDrawer* terrain) { terrain_ = terrain; }
 
 private:
     struct Set;
@@ -71,6 +76,8 @@ private:
     double near_distance_m(const Snapshot& snap, const GlareSource& src) const;
     void draw_occluders(const Snapshot& snap, const GlareSource& src, const View& probe, double source_near_m,
                         BodyPass& bodies, const SunLight& light, const EclipseShadowUniforms& shadows);
+    // Draws the body as relief when this frame does (then true).
+    bool draw_relief(const BodyState& st, const View& probe);
     void issue_queries(const Snapshot& snap, const GlareSource& src, const View& probe, double source_near_m,
                        const GLuint* queries);
     void read(Set& set);
@@ -85,6 +92,7 @@ private:
     const SceneConfig* scene_;
     BodyPass& bodies_;
     const EclipseShadowUniforms& shadows_;
+    TerrainDrawer* terrain_ = nullptr;
     const FrameContext* frame_ = nullptr;
     GlDepthTarget target_;
     GlProgram query_;

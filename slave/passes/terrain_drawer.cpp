@@ -48,6 +48,7 @@ TerrainDrawer::TerrainDrawer(const SceneConfig& scene, const ClusterConfig& clus
     }
     if (bodies_.empty()) return;
     lit_ = std::make_unique<GlProgram>("terrain.vert", "terrain.frag", "#define TERRAIN_AIR 0\n");
+    depth_ = std::make_unique<GlProgram>("terrain.vert", "terrain_depth.frag");
     for (const BodyConfig& c : scene.bodies)
         if (c.terrain.present && c.atmosphere.present && !air_)
             air_ = std::make_unique<GlProgram>("terrain.vert", "terrain.frag", "#define TERRAIN_AIR 1\n");
@@ -104,13 +105,28 @@ void TerrainDrawer::set_light(const GlProgram& p, const FrameContext& f, const F
     p.set("u_solar_scale", static_cast<float>(sun.solar_scale));
 }
 
+const TerrainDrawer::FrameTiles& TerrainDrawer::frame_tiles(Body& b, const FrameContext& f, const FrameBody& body) {
+    if (b.frame.frame != &f || b.frame.snap != f.snap) {
+        b.frame.cut = cut_for(f, body);
+        b.frame.list = b.store->request(b.frame.cut);
+        b.frame.frame = &f;
+        b.frame.snap = f.snap;
+    }
+    return b.frame;
+}
+
+void TerrainDrawer::set_view(const GlProgram& p, const ChannelView& view, const FrameBody& body) const {
+    p.set("u_projection", glm::mat4(view.frustum->projection(kNear_m, kFar_m)));
+    p.set("u_body_to_channel", glm::mat3(view.world_to_channel * body_to_world(*body.state)));
+}
+
 void TerrainDrawer::draw(const FrameContext& f, const FrameBody& body, const GlTexture& map, const GpuAtmosphere* air) {
     Body& b = *bodies_.at(body.body->id);
-    const terrain::TerrainCut cut = cut_for(f, body);
+    b.frame.frame = nullptr;  // a new frame: choose the cut again
+    const FrameTiles& tiles = frame_tiles(b, f, body);
     const GlProgram& p = air ? *air_ : *lit_;
     p.use();
-    p.set("u_projection", glm::mat4(f.view.frustum->projection(kNear_m, kFar_m)));
-    p.set("u_body_to_channel", glm::mat3(f.view.world_to_channel * body_to_world(*body.state)));
+    set_view(p, f.view, body);
     p.set("u_reflectance", glm::vec3(body.body->tint) * static_cast<float>(body.body->albedo));
     p.set("u_texture", static_cast<int>(kMapUnit));
     p.set("u_pixel_rad", static_cast<float>(pixel_angle_rad(*f.view.frustum)));
@@ -120,24 +136,59 @@ void TerrainDrawer::draw(const FrameContext& f, const FrameBody& body, const GlT
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    draw_tiles(p, b, f, body, cut);
+    TerrainFrameStats& s = b.last;
+    s = TerrainFrameStats{};
+    s.cut_hash = tiles.cut.hash();
+    s.cut_tiles = tiles.cut.tiles.size();
+    s.stand_ins = tiles.list.stand_ins;
+    draw_tiles(p, b, f.view, body, tiles.cut, tiles.list.meshes);
+    s.gpu_meshes = b.gpu.size();
     glDisable(GL_DEPTH_TEST);
     gl::check("terrain (" + body.body->name + ")");
 }
 
-void TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const FrameContext& f, const FrameBody& body,
-                               const terrain::TerrainCut& cut) {
+void TerrainDrawer::draw_depth(const FrameContext& f, const ChannelView& view, const FrameBody& body) {
+    Body& b = *bodies_.at(body.body->id);
+    const FrameTiles& tiles = frame_tiles(b, f, body);
+    const Meshes seen = meshes_in_view(tiles.list.meshes, view, body);
+    if (seen.empty()) return;
+    depth_->use();
+    set_view(*depth_, view, body);
+    const TerrainFrameStats kept = b.last;  // the frame's own draw's figures
+    draw_tiles(*depth_, b, view, body, tiles.cut, seen);
+    b.last = kept;
+    gl::check("terrain depth (" + body.body->name + ")");
+}
+
+TerrainDrawer::Meshes TerrainDrawer::meshes_in_view(const Meshes& meshes, const ChannelView& view,
+                                                    const FrameBody& body) {
+    const glm::dmat3 from_world = glm::transpose(body_to_world(*body.state));
+    const glm::dvec3 camera_body = from_world * (view.camera_position_m - body.state->position_m);
+    const glm::dvec3 axis = from_world * (view.channel_to_world * glm::dvec3(0.0, 0.0, -1.0));
+    const glm::dvec4 t(view.tangents());
+    const double half_rad = std::atan(std::hypot(std::max(t.x, t.y), std::max(t.z, t.w)));  // to a corner
+    Meshes out;
+    for (const auto& m : meshes) {
+        const glm::dvec3 to = m->centre_m - camera_body;
+        const double d = glm::length(to);
+        if (d > m->bound_radius_m &&
+            std::acos(std::clamp(glm::dot(to / d, axis), -1.0, 1.0)) - std::asin(m->bound_radius_m / d) > half_rad)
+            continue;
+        out.push_back(m);
+    }
+    return out;
+}
+
+// The tiles' meshes, each moved toward its parent's shape by its cut tile's morph distance; counts
+// the triangles and meshes drawn into b.last.
+void TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const ChannelView& view, const FrameBody& body,
+                               const terrain::TerrainCut& cut, const Meshes& meshes) {
     const glm::dmat3 to_world = body_to_world(*body.state);
-    const glm::dmat3 body_to_channel = f.view.world_to_channel * to_world;
-    const glm::dvec3 camera_body = glm::transpose(to_world) * (f.view.camera_position_m - body.state->position_m);
+    const glm::dmat3 body_to_channel = view.world_to_channel * to_world;
+    const glm::dvec3 camera_body = glm::transpose(to_world) * (view.camera_position_m - body.state->position_m);
     std::unordered_map<uint64_t, double> morph_far;
     for (const terrain::CutTile& t : cut.tiles) morph_far[t.key.id()] = t.morph_far_m;
-    const terrain::TileDrawList list = b.store->request(cut);
-    TerrainFrameStats s;
-    s.cut_hash = cut.hash();
-    s.cut_tiles = cut.tiles.size();
-    s.stand_ins = list.stand_ins;
-    for (const auto& mesh : list.meshes) {
+    for (const auto& mesh : meshes) {
         const GlVertexBuffer& buffer = gpu_tile(b, *mesh);
         const auto far = morph_far.find(mesh->key.id());  // a stand-in keeps its own shape
         p.set("u_morph_far_m", far == morph_far.end() ? 0.0f : static_cast<float>(far->second));
@@ -146,11 +197,9 @@ void TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const FrameContext& 
         buffer.bind();
         const size_t count = index_count(mesh->segments);
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT, nullptr);
-        s.triangles += count / 3;
-        ++s.drawn_tiles;
+        b.last.triangles += count / 3;
+        ++b.last.drawn_tiles;
     }
-    s.gpu_meshes = b.gpu.size();
-    b.last = s;
 }
 
 void TerrainDrawer::wait_idle() {

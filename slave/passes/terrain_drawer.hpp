@@ -56,6 +56,11 @@ public:
     // Draws the body's relief into the bound scene target (depth test on, then off again).
     // map: the body's map (BodyPass::texture); air: its atmosphere, or null.
     void draw(const FrameContext& f, const FrameBody& body, const GlTexture& map, const GpuAtmosphere* air);
+    // Draws the body's relief into the bound target as depth alone (the logarithmic depth of the
+    // true distance), seen through another view of the same frame (the glare probe's, around the
+    // Sun), depth test on: the tiles this frame's draw() drew, so that the relief drawn is the
+    // relief that hides the Sun's glare.
+    void draw_depth(const FrameContext& f, const ChannelView& view, const FrameBody& body);
     const TerrainFrameStats& last_frame(uint16_t body_id) const { return bodies_.at(body_id)->last; }
     terrain::TileStoreStats store_stats(uint16_t body_id) const { return bodies_.at(body_id)->store->stats(); }
     // Blocks until every body's store has built what was asked for (tests, offline rendering).
@@ -68,6 +73,12 @@ private:
         std::unique_ptr<GlVertexBuffer> buffer;
         std::list<uint64_t>::iterator at;
     };
+    struct FrameTiles {  // what one frame draws of a body
+        const FrameContext* frame = nullptr;
+        const Snapshot* snap = nullptr;
+        terrain::TerrainCut cut;
+        terrain::TileDrawList list;
+    };
     struct Body {
         std::shared_ptr<const terrain::Relief> relief;
         std::unique_ptr<terrain::TileStore> store;
@@ -78,15 +89,23 @@ private:
         std::list<uint64_t> recent;                 // most recently drawn first
         size_t gpu_capacity = 0;
         TerrainFrameStats last;
+        FrameTiles frame;  // the last frame's
     };
     const GlVertexBuffer& gpu_tile(Body& b, const terrain::TileMesh& mesh);
     void set_light(const GlProgram& p, const FrameContext& f, const FrameBody& body, const GpuAtmosphere* air) const;
-    void draw_tiles(const GlProgram& p, Body& b, const FrameContext& f, const FrameBody& body,
-                    const terrain::TerrainCut& cut);
+    // The frame's cut and tiles for the body (chosen and requested once a frame).
+    const FrameTiles& frame_tiles(Body& b, const FrameContext& f, const FrameBody& body);
+    void set_view(const GlProgram& p, const ChannelView& view, const FrameBody& body) const;
+    using Meshes = std::vector<std::shared_ptr<const terrain::TileMesh>>;
+    void draw_tiles(const GlProgram& p, Body& b, const ChannelView& view, const FrameBody& body,
+                    const terrain::TerrainCut& cut, const Meshes& meshes);
+    // The meshes whose bound reaches into a view's cone.
+    static Meshes meshes_in_view(const Meshes& meshes, const ChannelView& view, const FrameBody& body);
 
-    const ClusterConfig& cluster_;
+    const ClusterConfig cluster_;  // a copy: the renderer is often made from a temporary
     std::map<uint16_t, std::unique_ptr<Body>> bodies_;
     std::unique_ptr<GlProgram> lit_, air_;  // without and with an atmosphere
+    std::unique_ptr<GlProgram> depth_;      // depth alone (draw_depth)
 };
 
 }  // namespace cupola
