@@ -8,10 +8,10 @@ cd "$root"
 command -v clang-format >/dev/null || { echo "check_format: clang-format missing (scripts/setup.sh installs it)" >&2; exit 2; }
 mapfile -t files < <(find master slave common tools tests benchmarks fuzz -type f \( -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort)
 [ ${#files[@]} -gt 0 ] || { echo "check_format: no C++ files under $PWD" >&2; exit 2; }
-bad=()
-for f in "${files[@]}"; do
-  clang-format --style=file --dry-run --Werror "$f" >/dev/null 2>&1 || bad+=("$f")
-done
+# One clang-format per file, as many at once as there are cores; each names itself when it fails.
+mapfile -t bad < <(printf '%s\0' "${files[@]}" |
+  xargs -0 -P "$(nproc)" -n 1 sh -c 'clang-format --style=file --dry-run --Werror "$1" >/dev/null 2>&1 || echo "$1"' _ |
+  sort)
 if [ ${#bad[@]} -gt 0 ]; then
   printf 'check_format: not formatted: %s\n' "${bad[@]}" >&2
   echo "check_format: ${#bad[@]} of ${#files[@]} files; fix with: clang-format -i FILE..." >&2

@@ -18,6 +18,7 @@
 #include "image/frame_image.hpp"
 #include "overlay/arc_chunks.hpp"
 #include "overlay/constellation_figures.hpp"
+#include "overlay/label_declutter.hpp"
 #include "overlay/overlay_frames.hpp"
 #include "overlay/overlay_lines.hpp"
 #include "overlay_fader.hpp"
@@ -146,6 +147,34 @@ TEST(OverlayData, EveryArcLiesWithinItsCone) {
             }
         }
     std::printf("arc cones: the closest point lies %.5f degrees inside its cone\n", worst_margin_deg);
+}
+
+// Labels that overlap on the sky: the one of higher priority stays, equal priorities go in order;
+// labels clear of each other all stay, and a label not taking part (its overlay hidden) hides none.
+TEST(OverlayLabels, OfTwoOverlappingLabelsTheHigherPriorityIsDrawn) {
+    const double deg = glm::radians(1.0);
+    const glm::dvec3 up(0.0, 0.0, 1.0);
+    const auto at = [&](double ra_deg, double dec_deg) { return radec_deg_to_dir(ra_deg, dec_deg); };
+    const glm::dvec4 wide(0.0, -0.25 * deg, 3.0 * deg, 0.25 * deg);  // 3 x 0.5 degrees, to the right
+    std::vector<LabelFootprint> labels = {
+        {at(100.0, 20.0), wide, kConstellationPriority},  // 0: overlaps 1 (1 degree to its right)
+        {at(101.0, 20.0), wide, kStarPriority},           // 1: drawn first
+        {at(100.0, 20.6), wide, kConstellationPriority},  // 2: 0.6 degrees above 0: clear of it
+        {at(100.5, 20.6), wide, kConstellationPriority},  // 3: overlaps 2, after it
+        {at(140.0, 20.0), wide, kConstellationPriority},  // 4: far away
+    };
+    std::vector<bool> kept = declutter_labels(labels, up);
+    EXPECT_EQ(kept, (std::vector<bool>{false, true, true, false, true}));
+    labels.erase(labels.begin() + 1);  // the star's overlay hidden: the constellation's name stays
+    kept = declutter_labels(labels, up);
+    EXPECT_EQ(kept, (std::vector<bool>{true, true, false, true}));
+    // Boxes are in angle: a label 3.1 degrees to the right of another (beyond its 3 degree box) is
+    // clear of it at any declination where the text stands upright.
+    for (double dec : {0.0, 45.0, 80.0}) {
+        const double step = 3.1 / std::cos(glm::radians(dec));
+        const std::vector<LabelFootprint> row = {{at(100.0, dec), wide, 0}, {at(100.0 - step, dec), wide, 1}};
+        EXPECT_EQ(declutter_labels(row, up), (std::vector<bool>{true, true})) << dec;
+    }
 }
 
 TEST(OverlayData, MalformedFiguresAreRefusedNamingTheField) {
@@ -473,4 +502,33 @@ TEST(OverlayRender, ALineIsAsWideInDomeDegreesAtEveryResolution) {
                     40.0 / ch.width, diagonal ? "diagonal" : "vertical", width);
         EXPECT_NEAR(width, 0.4, diagonal ? 0.004 : 0.012) << ch.width << " px";
     }
+}
+
+// The real sky around Gemini with the constellations' names and the stars' and bodies' labels, on
+// two channels whose edge runs through it: both draw the same labels, and some names that would
+// overlap others are dropped.
+TEST(OverlayRender, BothChannelsDrawTheSameLabelsAndDropTheOverlappingOnes) {
+    const SceneConfig scene =
+        overlay_scene("declutter", kFigures, R"("constellation_names": { "fade_s": 0 }, "labels": { "fade_s": 0 })");
+    const ClusterConfig cluster = channels({{{-12.0, 0.0, 0.0}, 128}, {{12.0, 0.0, 0.0}, 128}}, 40.0);
+    test::headless_gl();
+    SceneRenderer left(cluster, cluster.channels[0], scene), right(cluster, cluster.channels[1], scene);
+    const Snapshot s = overlay_snapshot(radec_deg_to_dir(112.0, 25.0), glm::dvec3(0, 0, 1),
+                                        {OverlayKind::ConstellationNames, OverlayKind::Labels});
+    left.render(s);
+    right.render(s);
+    const auto& drawn = left.overlays()->labels_drawn();
+    EXPECT_EQ(drawn, right.overlays()->labels_drawn());
+    const auto& labels = left.overlays()->labels();
+    int shown = 0, dropped = 0;
+    std::string dropped_names;
+    for (size_t i = 0; i < labels.size(); ++i) {
+        if (labels[i].kind != OverlayKind::ConstellationNames && labels[i].kind != OverlayKind::Labels) continue;
+        if (labels[i].body) continue;  // the bodies are far behind the camera
+        ++shown;
+        if (!drawn[i]) ++dropped, dropped_names += " " + labels[i].text;
+    }
+    std::printf("labels: %d of %d dropped:%s\n", dropped, shown, dropped_names.c_str());
+    EXPECT_GT(dropped, 0);
+    EXPECT_LT(dropped, shown / 4);
 }

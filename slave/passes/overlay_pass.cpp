@@ -5,6 +5,7 @@
 
 #include "image/mip_chain.hpp"
 #include "overlay/constellation_figures.hpp"
+#include "overlay/label_declutter.hpp"
 #include "overlay/overlay_lines.hpp"
 #include "passes/sphere_billboard.hpp"
 #include "passes/text_raster.hpp"
@@ -161,32 +162,57 @@ std::vector<float> OverlayPass::label_vertices(const LabelBox& b, const glm::dve
     return v;
 }
 
-// The labels that stay put in their overlay's frame, in one buffer in the overlays' order.
+// The labels that stay put in their overlay's frame, in one buffer in the labels' order.
 void OverlayPass::upload_static_labels() {
     std::vector<float> v;
     constexpr size_t kFloatsPerVertex = 8;
-    for (size_t k = 0; k < kOverlayCount; ++k) {
-        label_first_[k] = static_cast<GLint>(v.size() / kFloatsPerVertex);
-        for (size_t i = 0; i < labels_.size(); ++i) {
-            if (labels_[i].body || static_cast<size_t>(labels_[i].kind) != k) continue;
-            const auto q = label_vertices(boxes_[i], labels_[i].anchor, k);
-            v.insert(v.end(), q.begin(), q.end());
-        }
-        label_count_[k] = static_cast<GLsizei>(v.size() / kFloatsPerVertex) - label_first_[k];
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        label_vertex_first_.push_back(labels_[i].body ? -1 : static_cast<GLint>(v.size() / kFloatsPerVertex));
+        if (labels_[i].body) continue;
+        const auto q = label_vertices(boxes_[i], labels_[i].anchor, static_cast<size_t>(labels_[i].kind));
+        v.insert(v.end(), q.begin(), q.end());
     }
     static_labels_.upload(v);
 }
 
-// The bodies' names at their directions from the camera this frame (not the ground's own body).
+std::optional<glm::dvec3> OverlayPass::label_direction(size_t i) const {
+    const OverlayLabel& l = labels_[i];
+    if (!shown_[static_cast<size_t>(l.kind)]) return std::nullopt;
+    if (!l.body) return *frames_.to_world(overlay_frame_of(l.kind)) * l.anchor;  // shown: it has its frame
+    const Snapshot& s = *frame_->snap;
+    if (*l.body >= s.bodies.size() || (frames_.ground_body && *frames_.ground_body == *l.body)) return std::nullopt;
+    const glm::dvec3 to = s.bodies[*l.body].position_m - s.camera_position_m;
+    if (!(glm::length(to) > 0.0)) return std::nullopt;
+    return glm::normalize(to);
+}
+
+// Which labels this frame draws: those of the shown overlays, no two overlapping, the cardinal
+// points first, then the bodies, the named stars and the constellations' names.
+void OverlayPass::declutter() {
+    std::vector<LabelFootprint> footprints;
+    std::vector<size_t> index;
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        const auto d = label_direction(i);
+        if (!d) continue;
+        const OverlayLabel& l = labels_[i];
+        const int priority = l.kind == OverlayKind::Cardinals            ? kCardinalPriority
+                             : l.body                                    ? kBodyPriority
+                             : l.kind == OverlayKind::ConstellationNames ? kConstellationPriority
+                                                                         : kStarPriority;
+        footprints.push_back({*d, glm::dvec4(boxes_[i].corners), priority});
+        index.push_back(i);
+    }
+    const std::vector<bool> kept = declutter_labels(footprints, frames_.label_up_world);
+    label_drawn_.assign(labels_.size(), false);
+    for (size_t k = 0; k < index.size(); ++k) label_drawn_[index[k]] = kept[k];
+}
+
+// The drawn bodies' names at their directions from the camera this frame.
 void OverlayPass::update_body_labels() {
     std::vector<float> v;
-    const Snapshot& s = *frame_->snap;
     for (size_t i = 0; i < labels_.size(); ++i) {
-        const auto& body = labels_[i].body;
-        if (!body || *body >= s.bodies.size() || (frames_.ground_body && *frames_.ground_body == *body)) continue;
-        const glm::dvec3 to = s.bodies[*body].position_m - s.camera_position_m;
-        if (!(glm::length(to) > 0.0)) continue;
-        const auto q = label_vertices(boxes_[i], glm::normalize(to), static_cast<size_t>(OverlayKind::Labels));
+        if (!labels_[i].body || !label_drawn_[i]) continue;
+        const auto q = label_vertices(boxes_[i], *label_direction(i), static_cast<size_t>(OverlayKind::Labels));
         v.insert(v.end(), q.begin(), q.end());
     }
     body_labels_.upload(v);
@@ -281,26 +307,28 @@ void OverlayPass::add_visible_arcs(const ArcChunk& c, const glm::mat3& to_channe
     }
 }
 
-// The shown overlays' fixed labels in one draw, then the bodies' (placed this frame).
+// The drawn labels: the fixed ones in one draw (runs of neighbours in the buffer), then the
+// bodies' (placed this frame).
 void OverlayPass::draw_labels() {
-    std::array<GLint, kOverlayCount> first{};
-    std::array<GLsizei, kOverlayCount> count{};
-    GLsizei draws = 0;
-    for (size_t k = 0; k < kOverlayCount; ++k) {
-        if (!shown_[k] || label_count_[k] == 0) continue;
-        first[draws] = label_first_[k];
-        count[draws++] = label_count_[k];
+    declutter();
+    run_first_.clear();
+    run_count_.clear();
+    for (size_t i = 0; i < labels_.size(); ++i) {
+        if (!label_drawn_[i] || label_vertex_first_[i] < 0) continue;
+        if (!run_first_.empty() && run_first_.back() + run_count_.back() == label_vertex_first_[i])
+            run_count_.back() += 6;
+        else
+            run_first_.push_back(label_vertex_first_[i]), run_count_.push_back(6);
     }
-    const auto labels = static_cast<size_t>(OverlayKind::Labels);
-    const bool bodies = shown_[labels];
+    const bool bodies = shown_[static_cast<size_t>(OverlayKind::Labels)];
     if (bodies) update_body_labels();  // only in frames that show them
-    if (draws == 0 && !(bodies && body_labels_.vertex_count() > 0)) return;
+    if (run_first_.empty() && !(bodies && body_labels_.vertex_count() > 0)) return;
     label_program_.use();
     atlas_->bind(0);
     label_program_.set("u_atlas", 0);
-    if (draws > 0) {
+    if (!run_first_.empty()) {
         static_labels_.bind();
-        glMultiDrawArrays(GL_TRIANGLES, first.data(), count.data(), draws);
+        glMultiDrawArrays(GL_TRIANGLES, run_first_.data(), run_count_.data(), static_cast<GLsizei>(run_first_.size()));
     }
     if (bodies && body_labels_.vertex_count() > 0) {
         body_labels_.bind();

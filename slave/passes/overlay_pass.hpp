@@ -14,6 +14,7 @@
 // of arcs first, then arc by arc within the runs that do).
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "config/scene_config.hpp"
@@ -42,6 +43,9 @@ public:
     size_t arc_count(OverlayKind k) const { return arcs_[static_cast<size_t>(k)]; }
     // Arcs given to the GPU since the pass was made: only the runs that can touch the channel.
     long arcs_drawn() const { return arcs_drawn_; }
+    // Every label, and whether the last frame drew it (label_declutter.hpp: no two overlap).
+    const std::vector<OverlayLabel>& labels() const { return labels_; }
+    const std::vector<bool>& labels_drawn() const { return label_drawn_; }
 
 private:
     struct LabelBox {             // a label's quad: corners in tangent-plane radians, atlas uv
@@ -52,6 +56,10 @@ private:
     void build_labels(const std::vector<ConstellationFigure>& figures, const std::vector<Star>& stars);
     void upload_static_labels();
     void update_body_labels();
+    // A label's direction this frame (world frame); none when its overlay is not shown, or for a
+    // body's, when the body is the ground or at the camera.
+    std::optional<glm::dvec3> label_direction(size_t i) const;
+    void declutter();
     // Each overlay's frame and colour this frame, for both programs; false where none is shown.
     bool set_overlay_uniforms();
     // The arcs of a chunk that can touch the channel, as runs of the draw.
@@ -76,9 +84,11 @@ private:
     std::vector<OverlayLabel> labels_;
     std::vector<LabelBox> boxes_;  // one per label
     std::unique_ptr<GlTexture> atlas_;
-    GlVertexBuffer static_labels_;  // every label but the bodies', by overlay
-    std::array<GLint, kOverlayCount> label_first_{};
-    std::array<GLsizei, kOverlayCount> label_count_{};
+    GlVertexBuffer static_labels_;           // every label but the bodies', in label order
+    std::vector<GLint> label_vertex_first_;  // per label: its first vertex there (-1: a body's)
+    std::vector<bool> label_drawn_;          // per label, this frame
+    std::vector<GLint> run_first_;           // this frame's runs of drawn labels in static_labels_
+    std::vector<GLsizei> run_count_;
     GlVertexBuffer body_labels_;
     const FrameContext* frame_ = nullptr;
     OverlayFrames frames_;
