@@ -223,10 +223,38 @@ ChannelCalibration read_calibration(const JsonReader& k, const std::string& dire
     return cal;
 }
 
-// Orientation and fov as the channel gives them, or the calibration's 3d-profile frustum.
-void read_channel_frustum(const JsonReader& r, const std::string& directory, ChannelConfig& c) {
+// What every channel takes from the rest of the cluster file.
+struct ChannelDefaults {
+    int width = 0, height = 0;
+    Transport transport = Transport::Broadcast;
+    std::string directory;
+    SinkConfig sinks;
+    RoomConfig room;
+};
+
+// A channel given as a screen's corners in the room: the off-axis frustum from the room's eye.
+void read_channel_screen(const JsonReader& r, const RoomConfig& room, ChannelConfig& c) {
+    if (r.has("orientation") || r.has("fov")) r.fail("screen", "give either screen or orientation and fov, not both");
+    const JsonReader k = r.child("screen");
+    PlanarScreen s;
+    s.lower_left_m = k.dvec3("lower_left_m");
+    s.upper_left_m = k.dvec3("upper_left_m");
+    s.upper_right_m = k.dvec3("upper_right_m");
+    k.reject_unknown_keys();
+    try {
+        const ScreenFrustum f = screen_frustum(s, room.eye_m);
+        c.orientation = f.orientation, c.fov = f.fov, c.screen = s;
+    } catch (const std::invalid_argument& e) {
+        r.fail("screen", std::string(e.what()) + " (room.eye_m is the eye)");
+    }
+}
+
+// Orientation and fov as the channel gives them, as a screen's corners, or the calibration's
+// 3d-profile frustum.
+void read_channel_frustum(const JsonReader& r, const ChannelDefaults& d, ChannelConfig& c) {
     std::optional<CalibratedFrustum> file_frustum;
-    if (auto k = r.optional_child("calibration")) c.calibration = read_calibration(*k, directory, file_frustum);
+    if (auto k = r.optional_child("calibration")) c.calibration = read_calibration(*k, d.directory, file_frustum);
+    if (r.has("screen")) return read_channel_screen(r, d.room, c);
     const bool own = r.has("orientation") || r.has("fov");
     if (!own && c.calibration) {
         if (!file_frustum)
@@ -244,19 +272,18 @@ void read_channel_frustum(const JsonReader& r, const std::string& directory, Cha
     c.fov = read_fov(r.child("fov"));
 }
 
-ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Transport transport,
-                           const std::string& directory, const SinkConfig& cluster_sinks) {
+ChannelConfig read_channel(const JsonReader& r, const ChannelDefaults& d) {
     ChannelConfig c;
-    c.output = cluster_sinks;
+    c.output = d.sinks;
     c.id = static_cast<int>(r.declared_integer("id"));
     c.name = r.string("name", "channel" + std::to_string(c.id));
     for (char ch : c.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_'))
             r.fail("name", "\"" + c.name + "\" may hold only letters, digits, '-' and '_' (it names a folder)");
-    read_channel_frustum(r, directory, c);
-    c.width = static_cast<int>(r.declared_integer("width", default_w));
-    c.height = static_cast<int>(r.declared_integer("height", default_h));
-    if (transport == Transport::Unicast) {
+    read_channel_frustum(r, d, c);
+    c.width = static_cast<int>(r.declared_integer("width", d.width));
+    c.height = static_cast<int>(r.declared_integer("height", d.height));
+    if (d.transport == Transport::Unicast) {
         c.unicast_address = r.string("unicast_address");
         check_host_port(r, "unicast_address", c.unicast_address);
     } else {
@@ -264,7 +291,7 @@ ChannelConfig read_channel(const JsonReader& r, int default_w, int default_h, Tr
         if (!c.unicast_address.empty()) check_host_port(r, "unicast_address", c.unicast_address);
     }
     if (auto o = r.optional_child("output")) {
-        c.output = read_sinks(*o, cluster_sinks);
+        c.output = read_sinks(*o, d.sinks);
         o->reject_unknown_keys();
     }
     r.reject_unknown_keys();
@@ -360,15 +387,14 @@ InputConfig read_input(const JsonReader& in, const std::string& directory) {
     return ic;
 }
 
-std::vector<ChannelConfig> read_channels(const JsonReader& r, int default_w, int default_h, Transport transport,
-                                         const std::string& directory, const SinkConfig& cluster_sinks) {
+std::vector<ChannelConfig> read_channels(const JsonReader& r, const ChannelDefaults& defaults) {
     auto channels = r.array("channels");
     if (channels.empty()) r.fail("channels", "at least one channel is required");
     std::set<int> ids;
     std::set<std::string> names;
     std::vector<ChannelConfig> out;
     for (auto& ch : channels) {
-        ChannelConfig c = read_channel(ch, default_w, default_h, transport, directory, cluster_sinks);
+        ChannelConfig c = read_channel(ch, defaults);
         if (!ids.insert(c.id).second) ch.fail("id", "channel id " + std::to_string(c.id) + " is used twice");
         if (!names.insert(c.name).second) ch.fail("name", "channel name \"" + c.name + "\" is used twice");
         out.push_back(c);
@@ -417,10 +443,18 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
     cfg.egl_device = static_cast<int>(r.declared_integer("egl_device"));
     cfg.network = read_network(r.section("network"));
     cfg.dome = read_dome(r.section("dome"));
-    int default_w = 0, default_h = 0;
-    cfg.output = read_output(r.section("output"), default_w, default_h);
+    if (auto room = r.optional_child("room")) {
+        cfg.room.eye_m = room->optional_dvec3("eye_m").value_or(glm::dvec3(0.0));
+        room->reject_unknown_keys();
+    }
+    ChannelDefaults defaults;
+    cfg.output = read_output(r.section("output"), defaults.width, defaults.height);
     cfg.input = read_input(r.section("input"), cfg.directory);
-    cfg.channels = read_channels(r, default_w, default_h, cfg.network.transport, cfg.directory, cfg.output.sink);
+    defaults.transport = cfg.network.transport;
+    defaults.directory = cfg.directory;
+    defaults.sinks = cfg.output.sink;
+    defaults.room = cfg.room;
+    cfg.channels = read_channels(r, defaults);
     r.reject_unknown_keys();
     check_coverage(cfg, file_in);
     return cfg;

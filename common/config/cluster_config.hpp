@@ -13,6 +13,7 @@
 
 #include "calibration/mpcdi_reading.hpp"
 #include "projection/channel_frustum.hpp"
+#include "projection/planar_screen.hpp"
 
 namespace cupola {
 
@@ -120,11 +121,18 @@ struct ChannelCalibration {
     bool frustum_from_file = false;  // the channel's orientation and fov are the region's frustum
 };
 
+// The room of a VR wall or a CAVE: the dome frame's axes in metres (x right, y up, z toward the
+// back), and where the viewer's eye is (channels given as screens are seen from it).
+struct RoomConfig {
+    glm::dvec3 eye_m{0.0};
+};
+
 struct ChannelConfig {
     int id = 0;
     std::string name;
     EulerDeg orientation;
     FovDeg fov;
+    std::optional<PlanarScreen> screen;  // given as a flat screen's corners: orientation and fov follow
     std::optional<ChannelCalibration> calibration;
     int width = 512;
     int height = 512;
@@ -144,6 +152,7 @@ struct ClusterConfig {
     int egl_device = -1;         // -1: first usable device, then Mesa surfaceless
     NetworkConfig network;
     DomeConfig dome;
+    RoomConfig room;
     OutputConfig output;
     InputConfig input;
     std::vector<ChannelConfig> channels;

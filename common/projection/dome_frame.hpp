@@ -25,6 +25,9 @@ struct EulerDeg {
 
 // Rotation taking channel-frame vectors to dome-frame vectors.
 glm::dmat3 channel_rotation(const EulerDeg& e);
+// The yaw, pitch and roll of a rotation (channel frame to dome frame): channel_rotation(euler_of(m))
+// is m. Pitch in [-90, 90], yaw and roll in (-180, 180].
+EulerDeg euler_of(const glm::dmat3& channel_to_dome);
 
 // Rotation taking dome-frame vectors to camera-frame vectors (apex tilted forward by tilt_deg).
 glm::dmat3 dome_tilt_rotation(double tilt_deg);
