@@ -55,6 +55,7 @@ Director::Director(const ClusterConfig& cluster, const SceneConfig& scene, ShowS
     : cluster_(cluster),
       scene_(scene),
       clearance_(scene),
+      head_(cluster.room.tracking, cluster.room.eye_m),
       show_(std::move(show)),
       dt_(show_frame_interval_s(cluster, show_)),
       shaper_(shaper_tuning(cluster.input)),
@@ -249,6 +250,8 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             overlay_override_[*cmd.overlay] = cmd.overlay_shown;
             return std::string(*cmd.overlay_shown ? "showing " : "hiding ") + overlay_names()[*cmd.overlay] +
                    " from frame " + std::to_string(next);
+        case ControlVerb::Head:
+            return apply_head(cmd, next);
         case ControlVerb::Status:
             return status(next).dump();
         case ControlVerb::Quit:
@@ -258,6 +261,22 @@ std::string Director::apply(const ControlCommand& cmd, uint64_t next) {
             return control_help();
     }
     return "";
+}
+
+std::string Director::apply_head(const ControlCommand& cmd, uint64_t next) {
+    if (!cmd.head) {
+        head_.set_control_pose(std::nullopt);
+        return "head released to the tracker (or the default eye) from frame " + std::to_string(next);
+    }
+    const std::array<double, 6>& h = *cmd.head;
+    HeadPose p;
+    p.position_m = glm::dvec3(h[0], h[1], h[2]);
+    p.orientation = glm::normalize(glm::quat_cast(channel_rotation(EulerDeg{h[3], h[4], h[5]})));
+    head_.set_control_pose(p);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "head at (%g, %g, %g) m, yaw %g pitch %g roll %g deg from frame %llu", h[0], h[1],
+                  h[2], h[3], h[4], h[5], static_cast<unsigned long long>(next));
+    return buf;
 }
 
 std::string Director::apply_goto(const ControlCommand& cmd, uint64_t next) {

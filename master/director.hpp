@@ -29,6 +29,7 @@
 #include "navigation/navigation_model.hpp"
 #include "show_script.hpp"
 #include "terrain/terrain_clearance.hpp"
+#include "tracking/head_tracker.hpp"
 
 namespace cupola {
 
@@ -60,6 +61,10 @@ public:
     bool live() const { return live_; }
     double frame_interval_s() const { return dt_; }
     nlohmann::json status(uint64_t next_frame) const;
+    // The viewer's head (VR walls and CAVEs): the tracker feeds it, "head" commands override it,
+    // the master takes one pose from it per frame.
+    HeadTracker& head() { return head_; }
+    const HeadTracker& head() const { return head_; }
 
 private:
     double show_time_at(uint64_t frame) const;
@@ -77,6 +82,7 @@ private:
     std::string apply_play(const ControlCommand& cmd, uint64_t next);
     void apply_setting(const ControlCommand& cmd);  // "set": the overrides of the show
     std::string apply_pattern(const ControlCommand& cmd, uint64_t next);
+    std::string apply_head(const ControlCommand& cmd, uint64_t next);
     AlignmentPattern pattern_at(uint64_t frame) const;  // the pattern frame() would give
     double show_rate_at(double show_time_s) const;
     void press_buttons(
@@ -88,6 +94,7 @@ private:
     const ClusterConfig& cluster_;
     const SceneConfig& scene_;
     terrain::TerrainClearance clearance_;  // the camera stays above the relief
+    HeadTracker head_;
     ShowScript show_;
     double dt_;  // show seconds per frame
     bool live_ = false;

@@ -12,6 +12,7 @@
 #include "input/input_hub.hpp"
 #include "input/input_latency.hpp"
 #include "input/usb_input.hpp"
+#include "tracking/dtrack_receiver.hpp"
 #include "master_counters.hpp"
 #include "present_skew.hpp"
 #include "session/master_session.hpp"
@@ -48,6 +49,7 @@ Snapshot make_frame_snapshot(const ClusterConfig& cluster, const SceneConfig& sc
     const double show_time_s = static_cast<double>(frame) * dt;
     Snapshot snap = show.evaluate(show_time_s, scene);
     finish_frame_snapshot(snap, show.settings_at(show_time_s), cluster, scene, frame, dt, auto_exposure, glare);
+    snap.head.position_m = cluster.room.eye_m;  // untracked: the default eye, as a quiet master sends it
     return snap;
 }
 
@@ -266,11 +268,16 @@ struct MasterNode::Loop {
                     std::chrono::milliseconds(cluster.network.first_frame_timeout_ms)}),
           stats(n.options_.stats_file, "master"),
           director(cluster, n.scene_, n.show_),
+          dtrack(cluster.room.tracking.source == TrackingSource::Dtrack
+                     ? std::make_unique<DtrackReceiver>(cluster.room.tracking)
+                     : nullptr),
           glare_sharing(cluster) {}
 
     bool stopped() const { return node.stop_requested_; }
     nlohmann::json stats_json() const;
     nlohmann::json presentation_json() const;
+    nlohmann::json head_json() const;
+    FrameHeadPose head_pose();
     void perform(const MasterActions& a);
     void step_until(Clock::time_point deadline);
     void wait_for_channels();
@@ -297,7 +304,9 @@ struct MasterNode::Loop {
     const std::vector<int> ids;
     MasterSession protocol;
     StatsWriter stats;
-    Director director;  // who drives camera and clock (show or presenter)
+    Director director;                       // who drives camera and clock (show or presenter)
+    std::unique_ptr<DtrackReceiver> dtrack;  // room.tracking.source "dtrack"
+    InputLatency head_latency;               // tracker datagram arrival -> the snapshot that carries it sent
     GlareSharing glare_sharing;
     std::map<int, FrameReport> previous_reports;  // the last frame's, for the glare visibility and the present skew
     PresentSkew present_skew;
@@ -316,7 +325,26 @@ nlohmann::json MasterNode::Loop::stats_json() const {
                           {"master", protocol.counters().to_json()},
                           {"presentation", presentation_json()},
                           {"usb", usb ? usb->counters().to_json() : nlohmann::json(nullptr)},
+                          {"head", head_json()},
                           {"wire", wire.counters().to_json()}};
+}
+
+// The head tracking's counters and latency for --stats and the end event.
+nlohmann::json MasterNode::Loop::head_json() const {
+    nlohmann::json j = director.head().counters().to_json();
+    j["source"] = tracking_source_names()[static_cast<size_t>(cluster.room.tracking.source)];
+    if (head_latency.count())
+        j["latency_ms"] = {{"frames", head_latency.count()},
+                           {"median", head_latency.percentile(50)},
+                           {"p99", head_latency.percentile(99)},
+                           {"max", head_latency.percentile(100)}};
+    return j;
+}
+
+// The frame's head pose: the tracker's datagrams read now, then the tracker's rules.
+FrameHeadPose MasterNode::Loop::head_pose() {
+    if (dtrack) dtrack->drain(director.head());
+    return director.head().frame_pose(monotonic_ns());
 }
 
 // The swap lock's measurement (present_skew.hpp) for --stats and the end event.
@@ -379,6 +407,8 @@ void MasterNode::Loop::frames() {
 bool MasterNode::Loop::frame(uint64_t f) {
     const DirectedFrame directed = director.frame(f, input_hub.combined());
     Snapshot snap = directed.snapshot;
+    const FrameHeadPose head = head_pose();
+    snap.head = head.pose;
     finish_frame_snapshot(snap, directed.settings, cluster, node.scene_, f, director.frame_interval_s(),
                           node.auto_exposure_.get(), node.glare_sources_.get(), &node.eye_, &node.overlays_);
     if (f > start_frame) glare_sharing.apply(snap, previous_reports, f - 1);
@@ -392,12 +422,16 @@ bool MasterNode::Loop::frame(uint64_t f) {
     std::optional<double> input_ms;
     if (directed.input_used && directed.input_report_ns && sent_ns >= directed.input_report_ns)
         input_ms = input_latency.add(directed.input_report_ns, monotonic_ns());
+    // Tracker datagram -> this snapshot on the wire.
+    std::optional<double> head_ms;
+    if (head.new_sample_arrival_ns) head_ms = head_latency.add(*head.new_sample_arrival_ns, monotonic_ns());
     while (!protocol.frame_complete() && !stopped()) step_until(protocol.next_wake());
     if (stopped()) return false;
 
     const std::map<int, FrameReport> reports = protocol.end_frame();
     const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     nlohmann::json fe = frame_event(snap, hash, f, frame_ms, input_ms);
+    if (head_ms) fe["head_latency_ms"] = *head_ms;
     fe["channels"] = reports_json(reports, hash, f);
     if (auto shown = present_skew.add(reports, previous_reports)) fe["present"] = shown->to_json();
     events.write(fe);
@@ -426,7 +460,9 @@ nlohmann::json MasterNode::Loop::frame_event(const Snapshot& snap, const std::st
         {"flags", snap.settings.flags},
         {"exposure", snap.settings.exposure},
         {"tone_white", snap.settings.tone_white},
-        {"adapted_cd_m2", snap.settings.adapted_cd_m2}};
+        {"adapted_cd_m2", snap.settings.adapted_cd_m2},
+        {"head_m", {snap.head.position_m.x, snap.head.position_m.y, snap.head.position_m.z}},
+        {"head_source", head_source_name(snap.head.source)}};
     if (input_ms) fe["input_latency_ms"] = *input_ms;
     return fe;
 }
@@ -454,6 +490,7 @@ void MasterNode::Loop::summary() {
         spdlog::info("master: present skew over {} frames (swap lock {}): {}", present_skew.frames(),
                      cluster.network.swap_lock ? "on" : "off", present_skew.to_json()["skew_ms"].dump());
     if (input_latency.count()) spdlog::info("master: device report -> snapshot sent: {}", input_latency.summary());
+    if (head_latency.count()) spdlog::info("master: tracker datagram -> snapshot sent: {}", head_latency.summary());
     if (node.glare_sources_)
         spdlog::info(
             "master: glare visibility: {} source-frames measured by the cluster, {} analytic ({} for a missing "

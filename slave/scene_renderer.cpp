@@ -67,8 +67,11 @@ void check_body_ids(const Snapshot& snap, const SceneConfig& scene) {
 struct SceneRenderer::Impl {
     Impl(const ClusterConfig& cluster, const ChannelConfig& ch, const SceneConfig& sc)
         : scene(sc),
+          channel(ch),
+          room(cluster.room),
           frustum(ch.frustum()),
-          tilt(dome_tilt_rotation(cluster.dome.tilt_deg) * channel_rotation(ch.orientation)),
+          camera_from_dome(dome_tilt_rotation(cluster.dome.tilt_deg)),
+          tilt(camera_from_dome * channel_rotation(ch.orientation)),
           targets(ch.width, ch.height, scene_has_terrain(sc)) {
         psf_sigma_rad = glm::radians(scene.stars.psf_sigma_arcmin / 60.0);
         coarsest_pixel_rad = pixel_angle_rad(frustum);
@@ -144,9 +147,17 @@ struct SceneRenderer::Impl {
     // Where render() starts in the pass list: the first pass, or the pattern when one is on.
     size_t first_pass(const Snapshot& snap) const;
 
+    // The frame's eye (the snapshot's head): a channel given as a screen is seen from it, and the
+    // scene from the camera moved as far as the eye is from the room's origin.
+    void follow_head(const Snapshot& snap);
+
     SceneConfig scene;
-    ChannelFrustum frustum;
-    glm::dmat3 tilt;  // channel -> camera frame
+    ChannelConfig channel;
+    RoomConfig room;
+    ChannelFrustum frustum;  // this frame's (follow_head)
+    glm::dmat3 camera_from_dome;
+    glm::dmat3 tilt;                    // channel -> camera frame
+    glm::dvec3 eye_offset_dome_m{0.0};  // this frame's eye from the camera, scene metres, dome frame
     FrameTargets targets;
     int tables = 0;                          // atmosphere table sets built or loaded
     std::unique_ptr<ShadowCasting> casting;  // which casters shadow which receiver, per frame (CPU, double)
@@ -218,7 +229,8 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     f.view.frustum = &frustum;
     f.view.channel_to_world = glm::mat3_cast(snap.camera_orientation) * tilt;
     f.view.world_to_channel = glm::transpose(f.view.channel_to_world);
-    f.view.camera_position_m = snap.camera_position_m;
+    f.view.camera_position_m =
+        snap.camera_position_m + glm::mat3_cast(snap.camera_orientation) * (camera_from_dome * eye_offset_dome_m);
     if (alignment_pattern_of(snap.settings.flags) != AlignmentPattern::Off) return f;  // no scene drawn
     check_body_ids(snap, scene);
     if (const BodyState* st = find_star(snap, scene)) {
@@ -238,6 +250,12 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     f.moonlight = brightest_moonlight(f);
     f.sky_first = atmosphere && stars_see_the_sky && nothing_else_before_the_sky && atmosphere->sky_first(f);
     return f;
+}
+
+void SceneRenderer::Impl::follow_head(const Snapshot& snap) {
+    if (!channel.screen) return;  // a dome's or a calibrated projector's channel: the eye is the camera
+    frustum = channel.frustum_seen_from(snap.head.position_m);
+    eye_offset_dome_m = room.scene_offset_m(snap.head.position_m);
 }
 
 void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
@@ -426,6 +444,7 @@ void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
     if (m.timing) m.timings = FrameTimings{};
+    m.follow_head(snap);
     const FrameContext frame = m.frame_context(snap);
     const size_t first = m.first_pass(snap);
     const bool geometry_read = std::any_of(m.passes.begin() + static_cast<std::ptrdiff_t>(first), m.passes.end(),

@@ -1,5 +1,6 @@
 // A loopback dome driven through the master's control socket: goto, time rate, a settings
-// switch, the cupola-control tool and quit, checked in the master's snapshots (events file) and
+// switch, the cupola-control tool, the head (the presenter's, a DTrack2 tracker's over UDP, then
+// lost) and quit, checked in the master's snapshots (events file) and
 // in every channel's frames (the snapshot hash each frame file records).
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include "config/cluster_config.hpp"
 #include "eclipse/shadow_casters.hpp"
 #include "image/frame_image.hpp"
+#include "net/udp_socket.hpp"
 #include "scene/ephemeris.hpp"
 #include "support/cluster_fixture.hpp"
 #include "support/control_client.hpp"
@@ -37,11 +39,23 @@ std::map<uint64_t, nlohmann::json> frames_of(const std::string& events_file) {
 
 glm::dvec3 vec(const nlohmann::json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
 
+nlohmann::json last_event(const std::string& events_file, const std::string& kind) {
+    nlohmann::json last;
+    for (const auto& e : test::read_events(events_file))
+        if (e.is_object() && e.value("event", "") == kind) last = e;
+    return last;
+}
+
 }  // namespace
 
 TEST(ControlLoopback, GotoTimeRateSettingsAndQuitReachEveryChannel) {
     const std::string dir = test::scratch_dir("control_loopback");
-    const std::string config = test::write_test_cluster(dir, 47960, 48, 48, {{"input", {{"usb", false}}}});
+    // The head follows a DTrack2 tracker on 127.0.0.1:47968 (given up 0.5 s after its last datagram).
+    const nlohmann::json tracking = {
+        {"source", "dtrack"}, {"address", "127.0.0.1"}, {"port", 47968}, {"fresh_s", 0.5}, {"timeout_s", 0.5}};
+    const std::string config = test::write_test_cluster(
+        dir, 47960, 48, 48,
+        {{"input", {{"usb", false}}}, {"room", {{"eye_m", {0.0, 1.6, 0.0}}, {"tracking", tracking}}}});
     const ClusterConfig cfg = load_cluster_config(config);
     const SceneConfig scene = load_scene_config(cfg.scene_file);
     const std::string sock = dir + "/control.sock", out = dir + "/out", events = out + "/logs/events.jsonl";
@@ -99,6 +113,39 @@ TEST(ControlLoopback, GotoTimeRateSettingsAndQuitReachEveryChannel) {
         EXPECT_NE(shadow_mode_of(fr.at(f_shadow - 1)["flags"].get<uint32_t>()), ShadowMode::Illustrative);
     }
 
+    // The head: the presenter's pose from its frame on, then the tracker's, then the default eye
+    // once the tracker has been silent for its timeout.
+    const std::string head = console.command("head 0.3 1.5 -0.2");
+    ASSERT_EQ(head.rfind("ok head at (0.3, 1.5, -0.2) m", 0), 0u) << head;
+    const uint64_t f_head = frame_in(head);
+    ASSERT_TRUE(frames_rendered(f_head + 2));
+    EXPECT_EQ(frames_of(events).at(f_head)["head_source"], "control");
+    EXPECT_LT(glm::length(vec(frames_of(events).at(f_head)["head_m"]) - glm::dvec3(0.3, 1.5, -0.2)), 1e-12);
+    EXPECT_EQ(frames_of(events).at(f_head - 1)["head_source"], "default");
+    const uint64_t f_release = frame_in(console.command("head release"));
+    UdpSocket tracker;
+    const std::string datagram = "fr 1\r\n6d 1 [0 1.000][-400 1500 250 0 0 0][1 0 0 0 1 0 0 0 1]\r\n";
+    const auto tracked = [&] {
+        tracker.send_to(make_address("127.0.0.1", 47968), reinterpret_cast<const uint8_t*>(datagram.data()),
+                        datagram.size());
+        for (const auto& [f, e] : frames_of(events))
+            if (f > f_release && e["head_source"] == "tracked") return true;
+        return false;
+    };
+    ASSERT_TRUE(test::wait_until(tracked, std::chrono::seconds(60))) << test::read_text(out + "/logs/master.log");
+    uint64_t f_tracked = 0;
+    for (const auto& [f, e] : frames_of(events))
+        if (f > f_release && e["head_source"] == "tracked" && !f_tracked) f_tracked = f;
+    const nlohmann::json te = frames_of(events).at(f_tracked);
+    EXPECT_LT(glm::length(vec(te["head_m"]) - glm::dvec3(-0.4, 1.5, 0.25)), 1e-12) << "millimetres to metres";
+    EXPECT_GE(te["head_latency_ms"].get<double>(), 0.0);
+    const auto lost = [&] {
+        const auto fr = frames_of(events);
+        return fr.rbegin()->second["head_source"] == "default";
+    };
+    ASSERT_TRUE(test::wait_until(lost, std::chrono::seconds(60)));
+    EXPECT_LT(glm::length(vec(frames_of(events).rbegin()->second["head_m"]) - glm::dvec3(0.0, 1.6, 0.0)), 1e-12);
+
     const std::string quit = console.command("quit");
     ASSERT_EQ(quit.rfind("ok quit before frame", 0), 0u) << quit;
     const uint64_t f_quit = frame_in(quit);
@@ -119,4 +166,8 @@ TEST(ControlLoopback, GotoTimeRateSettingsAndQuitReachEveryChannel) {
     }
     EXPECT_TRUE(std::filesystem::exists(out + "/dome/" + frame_file_name(f_quit - 1, "png")));
     EXPECT_FALSE(std::filesystem::exists(sock));  // the master removed its socket
+    // The tracker's loss is counted in the master's end event.
+    const nlohmann::json end = last_event(events, "end");
+    EXPECT_GE(end["stats"]["head"]["losses"].get<int>(), 1) << end.dump();
+    EXPECT_GE(end["stats"]["head"]["samples"].get<int>(), 1);
 }

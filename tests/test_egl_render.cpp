@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <tuple>
 
 #include "gl/egl_context.hpp"
 #include "gl/gl_api.hpp"
 #include "gl/gl_buffer.hpp"
 #include "gl/gl_framebuffer.hpp"
 #include "gl/gl_program.hpp"
+#include "projection/planar_screen.hpp"
 #include "scene/star_catalog.hpp"
 #include "scene_renderer.hpp"
 #include "shading/shared_shading.hpp"
@@ -57,6 +59,16 @@ ChannelConfig channel(int w, int h, EulerDeg e, FovDeg f) {
 }
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+// The brightest pixel's column, row and luminance (-1, -1, 0 for a black image).
+std::tuple<int, int, double> brightest_pixel(const Image& img) {
+    int bx = -1, by = -1;
+    double best = 0.0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (luminance(img.pixel(x, y)) > best) best = luminance(img.pixel(x, y)), bx = x, by = y;
+    return {bx, by, best};
+}
 
 }  // namespace
 
@@ -138,11 +150,7 @@ TEST(EglRender, StarLandsWherePixelMappingPredicts) {
     const Image img = r.render(snap);
     ASSERT_EQ(img.width, 160);
     ASSERT_EQ(img.height, 120);
-    int bx = -1, by = -1;
-    double best = 0.0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            if (luminance(img.pixel(x, y)) > best) best = luminance(img.pixel(x, y)), bx = x, by = y;
+    const auto [bx, by, best] = brightest_pixel(img);
     ASSERT_GT(best, 0.0) << "no star rendered";
     const glm::dvec3 dome_dir = glm::transpose(glm::mat3_cast(snap.camera_orientation)) * s.dir;
     const auto p = ch.frustum().dome_direction_to_pixel(dome_dir);
@@ -303,4 +311,45 @@ TEST(EglRender, WhiteLambertBodyAtOneAuIsAboutOne) {
     EXPECT_NEAR(c[1], 1.0, 0.05);
     EXPECT_NEAR(c[2], 1.0, 0.05);
     EXPECT_EQ(img.pixel(0, 0)[0], 0.0f);  // outside the disc (angular radius 2.87 deg, corner at 5.7)
+}
+
+// A channel given as a screen follows the snapshot's head: with the head at the default eye and
+// 0.8 m to the right, 0.3 m down and 0.5 m back, the star lands where each frustum seen from that
+// head predicts. A star is infinitely far: it keeps its direction, so it moves on the screen by
+// the head's own sideways motion (no parallax of its own).
+TEST(EglRender, AScreensChannelFollowsTheSnapshotsHead) {
+    context();
+    const OneStarScene s(30.0, 10.0, 0.0, "head");
+    ClusterConfig cluster;
+    cluster.room.eye_m = glm::dvec3(0.0, 1.5, 0.0);
+    const PlanarScreen screen{{-1.5, 0.0, -1.5}, {-1.5, 3.0, -1.5}, {1.5, 3.0, -1.5}};
+    const ScreenFrustum at_eye = screen_frustum(screen, cluster.room.eye_m);
+    ChannelConfig ch = channel(160, 160, at_eye.orientation, at_eye.fov);
+    ch.screen = screen;
+    cluster.channels = {ch};
+    SceneRenderer r(cluster, ch, s.scene);
+    Snapshot snap;
+    const glm::dvec3 fwd = equatorial_direction(33 * kDeg, 8 * kDeg);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, glm::dvec3(0, 0, 1)));
+    snap.camera_orientation = glm::quat_cast(glm::dmat3(right, glm::cross(right, fwd), -fwd));
+    const glm::dvec3 dome_dir = glm::transpose(glm::mat3_cast(snap.camera_orientation)) * s.dir;
+    std::vector<glm::dvec2> seen;
+    for (const glm::dvec3 head : {cluster.room.eye_m, glm::dvec3(0.8, 1.2, 0.5)}) {
+        snap.head.position_m = head;
+        snap.head.source = HeadSource::Tracked;
+        const Image img = r.render(snap);
+        const auto [bx, by, best] = brightest_pixel(img);
+        ASSERT_GT(best, 0.0) << "no star rendered";
+        const auto p = ch.frustum_seen_from(head).dome_direction_to_pixel(dome_dir);
+        ASSERT_TRUE(p);
+        EXPECT_NEAR(bx + 0.5, p->x, 1.0);
+        EXPECT_NEAR(by + 0.5, p->y, 1.0);
+        // The same from the room alone: where the ray from the head along the star's direction
+        // meets the screen's plane (z = -1.5 m), 160 px over its 3 m from its upper-left corner.
+        const glm::dvec3 hit = head + ((-1.5 - head.z) / dome_dir.z) * dome_dir;
+        EXPECT_NEAR(p->x, (hit.x + 1.5) / 3.0 * 160.0, 1e-6);
+        EXPECT_NEAR(p->y, (3.0 - hit.y) / 3.0 * 160.0, 1e-6);
+        seen.push_back(*p);
+    }
+    EXPECT_GT(glm::length(seen[1] - seen[0]), 40.0) << "the star moved on the screen with the head";
 }

@@ -145,3 +145,96 @@ TEST(PlanarScreen, AWallOfThreeScreensFromItsConfig) {
         EXPECT_NE(std::string(e.what()).find("behind"), std::string::npos) << e.what();
     }
 }
+
+namespace {
+
+// The point of a screen where a channel's continuous pixel lies (the screen fills the image).
+glm::dvec3 screen_point(const PlanarScreen& s, const ChannelFrustum& f, const glm::dvec2& px) {
+    return s.upper_left_m + (px.x / f.width()) * (s.upper_right_m - s.upper_left_m) +
+           (px.y / f.height()) * (s.lower_left_m - s.upper_left_m);
+}
+
+// The shipped CAVE's channels, the paths in the file made absolute.
+ClusterConfig shipped_cave() {
+    const std::string dir = test::scratch_dir("planar_screen_cave");
+    json cfg = json::parse(test::read_text(test::source_path("configs/cave-4wall.json")));
+    for (const char* k : {"key_file", "scene", "show"})
+        cfg[k] = test::source_path("configs/" + cfg[k].get<std::string>());
+    test::write_text(dir + "/cave.json", cfg.dump(2));
+    return load_cluster_config(dir + "/cave.json");
+}
+
+}  // namespace
+
+// A head off centre in the 3 m CAVE (0.6 m right, 0.4 m low, 0.9 m back): a straight line in the
+// room behind the front-left corner, seen through the front and the left screens, is drawn on the
+// walls in the plane through the eye and the line (straight) and meets itself at the corner
+// (continuous), both within 0.5 px, with each channel's frustum following the head.
+TEST(PlanarScreen, AStraightLineStaysStraightAcrossACavesCornerForAHeadOffCentre) {
+    const ClusterConfig cave = shipped_cave();
+    const ChannelConfig& front = cave.channels[0];
+    const ChannelConfig& left = cave.channels[1];
+    const glm::dvec3 eye(0.6, 1.3, 0.9);
+    const ChannelFrustum ff = front.frustum_seen_from(eye), lf = left.frustum_seen_from(eye);
+    EXPECT_NE(ff.fov().left_deg, front.fov.left_deg) << "the frustum follows the head";
+    const glm::dvec3 a(0.5, 0.4, -4.0), b(-4.0, 2.6, 0.8);  // the line, outside the cube
+    const glm::dvec3 plane_normal = glm::normalize(glm::cross(a - eye, b - eye));
+    double worst_plane_px = 0.0;
+    int on_front = 0, on_left = 0;
+    for (int i = 0; i <= 400; ++i) {
+        const glm::dvec3 dir = glm::normalize(glm::mix(a, b, i / 400.0) - eye);
+        for (const auto* ch : {&front, &left}) {
+            const ChannelFrustum& f = ch == &front ? ff : lf;
+            if (!f.contains(dir)) continue;
+            const glm::dvec3 on_wall = screen_point(*ch->screen, f, *f.dome_direction_to_pixel(dir));
+            const double px_m = 3.0 / f.width();  // the screens are 3 m wide
+            worst_plane_px = std::max(worst_plane_px, std::abs(glm::dot(on_wall - eye, plane_normal)) / px_m);
+            ++(ch == &front ? on_front : on_left);
+        }
+    }
+    EXPECT_GT(on_front, 20);
+    EXPECT_GT(on_left, 20);
+    EXPECT_LT(worst_plane_px, 0.5);
+    // Where the line's sight crosses the corner (x = z = -1.5), both channels put it at the same
+    // point of the corner edge.
+    const double s = [&] {  // the mix parameter whose sight passes through the corner's vertical line
+        double lo = 0.0, hi = 1.0;
+        for (int k = 0; k < 80; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            const glm::dvec3 d = glm::mix(a, b, mid) - eye;
+            // Sight to the corner's vertical line: where d.x / d.z equals that of the corner.
+            ((d.x * (-1.5 - eye.z) - d.z * (-1.5 - eye.x)) > 0.0 ? hi : lo) = mid;
+        }
+        return 0.5 * (lo + hi);
+    }();
+    const glm::dvec3 corner_dir = glm::normalize(glm::mix(a, b, s) - eye);
+    const glm::dvec3 via_front = screen_point(*front.screen, ff, *ff.dome_direction_to_pixel(corner_dir));
+    const glm::dvec3 via_left = screen_point(*left.screen, lf, *lf.dome_direction_to_pixel(corner_dir));
+    EXPECT_LT(glm::length(via_front - via_left) / (3.0 / ff.width()), 0.5);
+    EXPECT_NEAR(via_front.x, -1.5, 1e-6);
+    EXPECT_NEAR(via_front.z, -1.5, 1e-6);
+}
+
+// Channels given by angles (a dome, the angle-based wall) keep their configured frusta wherever
+// the head is: the head moves only screens.
+TEST(PlanarScreen, AngleBasedChannelsKeepTheirFrustaWhereverTheHeadIs) {
+    json cfg = json::parse(test::read_text(test::source_path("configs/wall-3ch.json")));
+    for (const char* k : {"key_file", "scene", "show"})
+        cfg[k] = test::source_path("configs/" + cfg[k].get<std::string>());
+    const std::string path = test::scratch_dir("planar_screen_angles") + "/wall.json";
+    test::write_text(path, cfg.dump(2));
+    const ClusterConfig c = load_cluster_config(path);
+    for (const ChannelConfig& ch : c.channels)
+        for (const glm::dvec3 eye : {glm::dvec3(0.0), glm::dvec3(0.4, -0.3, 1.0)}) {
+            const ChannelFrustum f = ch.frustum_seen_from(eye), g = ch.frustum();
+            EXPECT_EQ(f.tan_left(), g.tan_left());
+            EXPECT_EQ(f.tan_right(), g.tan_right());
+            EXPECT_EQ(f.tan_up(), g.tan_up());
+            EXPECT_EQ(f.tan_down(), g.tan_down());
+            EXPECT_EQ(f.orientation().yaw_deg, g.orientation().yaw_deg);
+        }
+    // A screen seen from an eye behind it keeps its configured frustum rather than failing.
+    const ClusterConfig cave = shipped_cave();
+    const ChannelFrustum kept = cave.channels[0].frustum_seen_from(glm::dvec3(0.0, 1.5, -2.0));
+    EXPECT_EQ(kept.tan_left(), cave.channels[0].frustum().tan_left());
+}

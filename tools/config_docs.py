@@ -133,13 +133,48 @@ def rows(props, required, prefix, root):
     return out
 
 
+# Prose that a table cannot carry, after a schema's table.
+NOTES = {
+    "cluster": """
+### The room frame (VR walls and CAVEs)
+
+A wall or a CAVE is described in its room: x to the right, y up, z toward the back of the room
+(the front screen is at negative z), in metres. These are the dome frame's axes, so a room point
+is also a direction from the scene's camera.
+
+- **Screens.** A channel with `screen` is a flat screen given by its lower-left, upper-left and
+  upper-right corners. Its image is the off-axis perspective from the eye through the screen's
+  edges (Kooima 2008): the screen's axis is its normal, and the image's corners are its corners
+  wherever the eye is.
+- **The eye.** `room.eye_m` is where the viewer's eye is when nothing tracks the head. With
+  `room.tracking.source` `dtrack`, the master reads an A.R.T. DTrack2 stream (the `6d` line of the
+  body `room.tracking.body`) once per frame, turns its millimetres into metres and its axes into
+  the room's (`axes`, `origin_m`), filters it (`filter`) and sends one head pose in every snapshot:
+  every channel of a frame is seen from the same head. The presenter's `head X Y Z [YAW PITCH
+  ROLL]` command puts the head anywhere until `head release`.
+- **A silent tracker.** A sample older than `fresh_s` is held (its pose, not extrapolated); after
+  `timeout_s` without a sample the eye goes back to `eye_m`. Both are counted in the master's
+  `--stats` (`head`: `held_frames`, `default_frames`, `losses`, `recoveries`), and a loss is
+  logged. Datagrams that are not DTrack2 output are refused, counted (`bad_packets`) and logged;
+  they change nothing. The latency from a datagram's arrival to the snapshot that carries it is in
+  the frame events (`head_latency_ms`) and the stats (`latency_ms`).
+- **The scene.** The scene's camera sits at the room point `origin_m` (default: `eye_m`). An eye
+  elsewhere sees the scene from the camera moved by the difference times `scale` (scene metres per
+  room metre). Stars and anything else at astronomical distance do not move with the head; with a
+  large `scale` (1e11: the inner solar system in the room) the planets do.
+- **Channels given by angles** (domes, projectors from an MPCDI file) keep their frusta: the head
+  moves only screens.
+""",
+}
+
+
 def section(name):
     root = json.loads((ROOT / "configs" / "schema" / (name + ".schema.json")).read_text())
     lines = ["## " + root["title"], "", root["description"], "",
              "Schema: `configs/schema/%s.schema.json`." % name, "",
              "| field | type | allowed | default | meaning |", "|---|---|---|---|---|"]
     lines += rows(root["properties"], root.get("required", []), "", root)
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n" + NOTES.get(name, "")
 
 
 def generate():

@@ -304,6 +304,37 @@ std::string existing_file(const JsonReader& r, const std::string& directory, con
     return p;
 }
 
+HeadTrackingConfig read_tracking(const JsonReader& t) {
+    HeadTrackingConfig c;
+    const std::string source = t.declared_choice("source");
+    c.source = source == "dtrack" ? TrackingSource::Dtrack : TrackingSource::Fixed;
+    c.address = ipv4(t, "address");
+    c.port = static_cast<uint16_t>(t.declared_integer("port"));
+    c.body = static_cast<int>(t.declared_integer("body"));
+    c.mounting.axes = tracker_axes_from_name(t.declared_choice("axes"));
+    c.mounting.origin_m = t.optional_dvec3("origin_m").value_or(glm::dvec3(0.0));
+    c.fresh_s = t.declared_number("fresh_s");
+    c.timeout_s = t.declared_number("timeout_s");
+    if (c.timeout_s < c.fresh_s)
+        t.fail("timeout_s", "must not be shorter than fresh_s (" + std::to_string(c.fresh_s) + ")");
+    const std::string filter = t.declared_choice("filter");
+    c.filter = filter == "smooth" ? HeadFilter::Smooth : filter == "predict" ? HeadFilter::Predict : HeadFilter::None;
+    c.smoothing_s = t.declared_number("smoothing_s");
+    c.prediction_s = t.declared_number("prediction_s");
+    t.reject_unknown_keys();
+    return c;
+}
+
+RoomConfig read_room(const JsonReader& r) {
+    RoomConfig room;
+    room.eye_m = r.optional_dvec3("eye_m").value_or(glm::dvec3(0.0));
+    room.origin_m = r.optional_dvec3("origin_m");
+    room.scale = r.declared_number("scale");
+    room.tracking = read_tracking(r.section("tracking"));
+    r.reject_unknown_keys();
+    return room;
+}
+
 DomeConfig read_dome(const JsonReader& d) {
     DomeConfig dome;
     dome.fov_deg = d.declared_number("fov_deg");
@@ -443,10 +474,7 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
     cfg.egl_device = static_cast<int>(r.declared_integer("egl_device"));
     cfg.network = read_network(r.section("network"));
     cfg.dome = read_dome(r.section("dome"));
-    if (auto room = r.optional_child("room")) {
-        cfg.room.eye_m = room->optional_dvec3("eye_m").value_or(glm::dvec3(0.0));
-        room->reject_unknown_keys();
-    }
+    cfg.room = read_room(r.section("room"));
     ChannelDefaults defaults;
     cfg.output = read_output(r.section("output"), defaults.width, defaults.height);
     cfg.input = read_input(r.section("input"), cfg.directory);
@@ -491,6 +519,15 @@ std::optional<CoverageHole> find_coverage_hole(const DomeConfig& dome, const std
         if (d && !covered(*d)) return hole_at(*d);
     }
     return std::nullopt;
+}
+
+ChannelFrustum ChannelConfig::frustum_seen_from(const glm::dvec3& eye_room_m) const {
+    if (!screen) return frustum();
+    try {
+        return ChannelFrustum(orientation, screen_frustum(*screen, eye_room_m).fov, width, height);
+    } catch (const std::invalid_argument&) {
+        return frustum();
+    }
 }
 
 }  // namespace cupola

@@ -14,6 +14,7 @@
 #include "calibration/mpcdi_reading.hpp"
 #include "projection/channel_frustum.hpp"
 #include "projection/planar_screen.hpp"
+#include "tracking/head_tracking_config.hpp"
 
 namespace cupola {
 
@@ -122,9 +123,18 @@ struct ChannelCalibration {
 };
 
 // The room of a VR wall or a CAVE: the dome frame's axes in metres (x right, y up, z toward the
-// back), and where the viewer's eye is (channels given as screens are seen from it).
+// back); where the viewer's eye is when nothing tracks it (channels given as screens are seen from
+// the eye); the room point the scene camera is at, and how many scene metres a room metre is; and
+// what follows the viewer's head.
 struct RoomConfig {
     glm::dvec3 eye_m{0.0};
+    std::optional<glm::dvec3> origin_m;  // none: eye_m
+    double scale = 1.0;                  // scene metres per room metre
+    HeadTrackingConfig tracking;
+    glm::dvec3 origin() const { return origin_m.value_or(eye_m); }
+    // How far an eye at this room point is from the scene's camera, in scene metres along the
+    // room's (the dome frame's) axes.
+    glm::dvec3 scene_offset_m(const glm::dvec3& eye_room_m) const { return (eye_room_m - origin()) * scale; }
 };
 
 struct ChannelConfig {
@@ -139,6 +149,10 @@ struct ChannelConfig {
     std::string unicast_address;  // "host:port", used with the unicast transport
     SinkConfig output;            // the cluster's output.sink/window/kms, with this channel's own keys
     ChannelFrustum frustum() const { return ChannelFrustum(orientation, fov, width, height); }
+    // The frustum as an eye at this room point sees it: a screen's follows the eye (Kooima 2008);
+    // any other channel's is its own. An eye that is not in front of the screen (a head through the
+    // wall) keeps the configured frustum.
+    ChannelFrustum frustum_seen_from(const glm::dvec3& eye_room_m) const;
 };
 
 struct ClusterConfig {

@@ -35,13 +35,14 @@ double finest_pixel_rad(const ChannelFrustum& f) {
 }
 
 CutView cut_view_for_cluster(const ClusterConfig& cluster, const glm::dvec3& camera_body_m,
-                             const glm::dmat3& body_from_world, const glm::dquat& camera_orientation) {
+                             const glm::dmat3& body_from_world, const glm::dquat& camera_orientation,
+                             const std::optional<glm::dvec3>& eye_room_m) {
     CutView v;
     v.camera_m = camera_body_m;
     const glm::dmat3 to_body = body_from_dome(cluster, body_from_world, camera_orientation);
     v.pixel_rad = 1e9;
     for (const ChannelConfig& ch : cluster.channels) {
-        const ChannelFrustum f = ch.frustum();
+        const ChannelFrustum f = eye_room_m ? ch.frustum_seen_from(*eye_room_m) : ch.frustum();
         v.channels.push_back(channel_cone(f, to_body));
         v.pixel_rad = std::min(v.pixel_rad, finest_pixel_rad(f));
     }

@@ -64,6 +64,40 @@ glm::dquat get_dquat(ByteReader& r, const char* field) {
     if (std::abs(n - 1.0) > 1e-6) throw WireError(std::string("field '") + field + "' is not a unit quaternion");
     return q;
 }
+
+GlareSource get_glare_source(ByteReader& r) {
+    GlareSource g;
+    g.body = r.u16("glare.body");
+    g.star = r.u32("glare.star");
+    g.direction = get_vec3(r, "glare.direction");
+    if (std::abs(glm::length(g.direction) - 1.0f) > 1e-4f)
+        throw WireError("field 'glare.direction' is not a unit vector");
+    g.angular_radius = finite_f(r, "glare.angular_radius");
+    if (g.angular_radius < 0.0f || g.angular_radius > 1.6f)
+        throw WireError("field 'glare.angular_radius' must lie in [0, pi/2]");
+    g.irradiance = get_vec3(r, "glare.irradiance");
+    if (glm::any(glm::lessThan(g.irradiance, glm::vec3(0.0f))))
+        throw WireError("field 'glare.irradiance' must not be negative");
+    g.visible_fraction = finite_f(r, "glare.visible_fraction");
+    if (g.visible_fraction < 0.0f || g.visible_fraction > 1.0f)
+        throw WireError("field 'glare.visible_fraction' must lie in [0, 1]");
+    g.centroid_offset = get_vec3(r, "glare.centroid_offset");
+    const uint8_t origin = r.u8("glare.origin");
+    if (origin > static_cast<uint8_t>(GlareOrigin::Analytic)) throw WireError("field 'glare.origin' is unknown");
+    g.origin = static_cast<GlareOrigin>(origin);
+    g.measured_frame = r.u64("glare.measured_frame");
+    return g;
+}
+
+HeadPose get_head_pose(ByteReader& r) {
+    HeadPose h;
+    const uint8_t source = r.u8("head.source");
+    if (source >= kHeadSourceCount) throw WireError("field 'head.source' is unknown");
+    h.source = static_cast<HeadSource>(source);
+    h.position_m = get_dvec3(r, "head.position_m");
+    h.orientation = get_dquat(r, "head.orientation");
+    return h;
+}
 }  // namespace
 
 std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
@@ -101,6 +135,9 @@ std::vector<uint8_t> encode_snapshot(const Snapshot& s) {
         w.u8(static_cast<uint8_t>(g.origin));
         w.u64(g.measured_frame);
     }
+    w.u8(static_cast<uint8_t>(s.head.source));
+    put_dvec3(w, s.head.position_m);
+    put_dquat(w, s.head.orientation);
     return out;
 }
 
@@ -142,27 +179,8 @@ Snapshot decode_snapshot(const uint8_t* data, size_t size) {
     if (ng > kMaxGlareSources)
         throw WireError("glare_count " + std::to_string(ng) + " exceeds " + std::to_string(kMaxGlareSources));
     s.glare.resize(ng);
-    for (auto& g : s.glare) {
-        g.body = r.u16("glare.body");
-        g.star = r.u32("glare.star");
-        g.direction = get_vec3(r, "glare.direction");
-        if (std::abs(glm::length(g.direction) - 1.0f) > 1e-4f)
-            throw WireError("field 'glare.direction' is not a unit vector");
-        g.angular_radius = finite_f(r, "glare.angular_radius");
-        if (g.angular_radius < 0.0f || g.angular_radius > 1.6f)
-            throw WireError("field 'glare.angular_radius' must lie in [0, pi/2]");
-        g.irradiance = get_vec3(r, "glare.irradiance");
-        if (glm::any(glm::lessThan(g.irradiance, glm::vec3(0.0f))))
-            throw WireError("field 'glare.irradiance' must not be negative");
-        g.visible_fraction = finite_f(r, "glare.visible_fraction");
-        if (g.visible_fraction < 0.0f || g.visible_fraction > 1.0f)
-            throw WireError("field 'glare.visible_fraction' must lie in [0, 1]");
-        g.centroid_offset = get_vec3(r, "glare.centroid_offset");
-        const uint8_t origin = r.u8("glare.origin");
-        if (origin > static_cast<uint8_t>(GlareOrigin::Analytic)) throw WireError("field 'glare.origin' is unknown");
-        g.origin = static_cast<GlareOrigin>(origin);
-        g.measured_frame = r.u64("glare.measured_frame");
-    }
+    for (auto& g : s.glare) g = get_glare_source(r);
+    s.head = get_head_pose(r);
     if (r.remaining() != 0)
         throw WireError(std::to_string(r.remaining()) + " unexpected bytes after the snapshot's last field");
     return s;

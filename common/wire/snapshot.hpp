@@ -6,6 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "overlay/overlay_kind.hpp"
+#include "tracking/head_pose.hpp"
 
 #include <array>
 #include <cstdint>
@@ -85,6 +86,9 @@ struct Snapshot {
     std::vector<BodyState> bodies;
     RenderSettings settings;
     std::vector<GlareSource> glare;  // brightest first; empty when the scene has no glare
+    // The viewer's head in the room (VR walls and CAVEs): channels given as screens are seen from
+    // it. One pose per frame for the whole cluster (the master's HeadTracker).
+    HeadPose head;
 
     bool operator==(const Snapshot&) const = default;
 };

@@ -44,8 +44,7 @@ const std::string& control_help() {
         "play [show.json] | pause | resume | stop | set shadow_mode <mode>|show | set exposure <x>|auto|show | "
         "set star_limit <mag>|show | set twinkle on|off|forced|show | set sky_brightness <mag>|show | "
         "set bortle <1-9>|show | show|hide <overlay> | show overlays show | pattern grid|white|black|off|show | "
-        "status | "
-        "quit | help";
+        "head <x> <y> <z> [yaw pitch roll] | head release | status | quit | help";
     return text;
 }
 
@@ -198,6 +197,24 @@ void parse_overlay(const Words& w, ControlCommand& c) {
     }
 }
 
+// "head release", or "head X Y Z [YAW PITCH ROLL]": a room point in metres, angles in degrees.
+void parse_head(const Words& w, ControlCommand& c) {
+    c.verb = ControlVerb::Head;
+    if (w.size() == 2 && lower_case(w[1]) == "release") return;
+    if (w.size() != 4 && w.size() != 7)
+        throw ControlError("head: give x y z in metres, optionally yaw pitch roll in degrees, or \"release\"");
+    std::array<double, 6> v{};
+    const char* names[] = {"head x", "head y", "head z", "head yaw", "head pitch", "head roll"};
+    for (size_t i = 1; i < w.size(); ++i) {
+        v[i - 1] = parse_number(w[i], names[i - 1]);
+        const double limit = i <= 3 ? 1e4 : 360.0;
+        if (std::abs(v[i - 1]) > limit)
+            throw ControlError(std::string(names[i - 1]) + ": must be within +-" +
+                               (i <= 3 ? "10000 m" : "360 degrees"));
+    }
+    c.head = v;
+}
+
 }  // namespace
 
 ControlCommand parse_control_line(const std::string& line) {
@@ -227,6 +244,8 @@ ControlCommand parse_control_line(const std::string& line) {
         parse_set(w, c);
     } else if (verb == "pattern") {
         parse_pattern(w, c);
+    } else if (verb == "head") {
+        parse_head(w, c);
     } else if (verb == "show" || verb == "hide") {
         parse_overlay(w, c);
     } else {

@@ -20,10 +20,14 @@
 //   show|hide <overlay>            fade an overlay in or out ("show grid equatorial", "hide
 //                                  constellations"; common/overlay/overlay_kind.hpp); "show
 //                                  overlays show": every overlay as the show has it again
+//   head <x> <y> <z> [yaw pitch roll]  the viewer's head at this room point (metres) and turned so
+//                                  (degrees), whatever tracks it; "head release": the tracker's
+//                                  (or the default eye) again
 //   status                         one JSON line: frame, mode, time, rate, camera, show
 //   quit                           stop the show and the cluster
 //   help                           the list above
 // Every command is answered with one line: "ok <what happened>" or "error <what was wrong>".
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -47,6 +51,7 @@ enum class ControlVerb {
     Set,
     Pattern,
     Overlay,
+    Head,
     Status,
     Quit,
     Help
@@ -54,20 +59,21 @@ enum class ControlVerb {
 
 struct ControlCommand {
     ControlVerb verb = ControlVerb::Help;
-    std::string body;                   // goto, mode (optional): as typed
-    std::optional<double> seconds;      // goto: flight duration
-    std::optional<double> height_m;     // goto: land this high above the ground (relief or sphere)
-    std::string nav_mode;               // mode: orbit | fly | walk
-    double rate = 1.0;                  // time rate
-    double sim_time_s = 0.0;            // time set: seconds since J2000 TT
-    std::string utc;                    // time set: as typed
-    std::string show_file;              // play: as typed ("" = resume)
-    std::optional<size_t> overlay;      // show / hide: the OverlayKind (none: every overlay)
-    std::optional<bool> overlay_shown;  // show / hide; none: the show's again ("show overlays show")
-    std::string setting;                // set: shadow_mode | exposure | star_limit | twinkle | sky_brightness
-    std::string value;                  // set: the value as typed (lower case)
-    std::optional<double> number;       // set exposure / star_limit: the value when it is a number
-    std::string pattern;                // pattern: off | grid | white | black | show
+    std::string body;                           // goto, mode (optional): as typed
+    std::optional<double> seconds;              // goto: flight duration
+    std::optional<double> height_m;             // goto: land this high above the ground (relief or sphere)
+    std::string nav_mode;                       // mode: orbit | fly | walk
+    double rate = 1.0;                          // time rate
+    double sim_time_s = 0.0;                    // time set: seconds since J2000 TT
+    std::string utc;                            // time set: as typed
+    std::string show_file;                      // play: as typed ("" = resume)
+    std::optional<size_t> overlay;              // show / hide: the OverlayKind (none: every overlay)
+    std::optional<bool> overlay_shown;          // show / hide; none: the show's again ("show overlays show")
+    std::string setting;                        // set: shadow_mode | exposure | star_limit | twinkle | sky_brightness
+    std::string value;                          // set: the value as typed (lower case)
+    std::optional<double> number;               // set exposure / star_limit: the value when it is a number
+    std::string pattern;                        // pattern: off | grid | white | black | show
+    std::optional<std::array<double, 6>> head;  // head: x, y, z (m), yaw, pitch, roll (deg); none: release
 };
 
 // Parses one line (without its newline). Throws ControlError on anything else.

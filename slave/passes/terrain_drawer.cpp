@@ -60,8 +60,8 @@ terrain::TerrainCut TerrainDrawer::cut_for(const FrameContext& f, const FrameBod
     Body& b = *bodies_.at(body.body->id);
     const glm::dmat3 to_world = body_to_world(*body.state), from_world = glm::transpose(to_world);
     const glm::dvec3 camera_body = from_world * (f.view.camera_position_m - body.state->position_m);
-    const terrain::CutView view =
-        terrain::cut_view_for_cluster(cluster_, camera_body, from_world, f.snap->camera_orientation);
+    const terrain::CutView view = terrain::cut_view_for_cluster(cluster_, camera_body, from_world,
+                                                                f.snap->camera_orientation, f.snap->head.position_m);
     return terrain::select_cut(*b.relief, view, b.settings, b.ranges);
 }
 
