@@ -22,8 +22,9 @@
 //    "trivial_ms", "ratio", "ratio_untimed", "passes": {name: ms}, "passes_ratio": {name: ratio}, "read_back_ms",
 //    "frame_min_ms", "trivial_min_ms", "ratio_of_minima", "frame_cpu_ms", "trivial_cpu_ms",
 //    "ratio_cpu", "camera_altitude_m", "sun_zenith_deg", "sun_step_deg", "halo_separate",
-//    "surface_separate", "stars_ignore_sky", "sky_last", "overlays"} (with --overlays also
-//    "overlays_extra_ms", "overlays_ratio")
+//    "surface_separate", "stars_ignore_sky", "sky_last", "overlays", "stereo"} (with --overlays
+//    also "overlays_extra_ms", "overlays_ratio"; with --stereo also "mono_frame_ms", "mono_ratio",
+//    "stereo_over_mono": the stereo frame, both eyes and their packing, over the mono one)
 // frame_ms is the whole frame with the per-pass waits (their sum plus the CPU set-up),
 // untimed_frame_ms the same frame drawn the way the slave draws it (one wait at the end), and
 // ratio_untimed that frame over the trivial pass: the waits after every pass cost llvmpipe a
@@ -38,7 +39,7 @@
 // angle crosses a step of the table's grid, and those renders are counted in the frames.
 //   build/bin/frame_cost [--size 1024] [--frames 10] [--model NAME] [--read-back] [--views day,orbit]
 //                        [--images DIR] [--sun-step-deg D] [--halo-separate] [--surface-separate]
-//                        [--stars-ignore-sky] [--sky-last] [--overlays all|NAME,...]
+//                        [--stars-ignore-sky] [--sky-last] [--overlays all|NAME,...] [--stereo MODE]
 // With --overlays the scene's overlays named (or all) are shown (the pass "overlays"), and every
 // round also draws the untimed frame without them, right after it: "overlays_extra_ms" is the
 // median of those differences and "overlays_ratio" that over the trivial pass, the overlays' cost.
@@ -233,6 +234,7 @@ struct Options {
     std::string scene_file = std::string(CUPOLA_SOURCE_DIR) + "/configs/scenes/earth-moon.json";
     std::string model, images;
     std::vector<std::string> views = {"day", "sunset", "orbit"};
+    std::string stereo = "mono";  // the channel's stereo mode (projection/stereo_mode.hpp)
 };
 
 // The scene with the Earth's atmosphere at the chosen quality; a surface map that is not on
@@ -257,13 +259,14 @@ SceneConfig load_scene(const Options& o, std::string& model) {
     return scene;
 }
 
-ClusterConfig one_channel(int size) {
+ClusterConfig one_channel(int size, const std::string& stereo = "mono") {
     ClusterConfig cluster;
     ChannelConfig ch;
     ch.id = 0;
     ch.name = "frame-cost";
     ch.fov = FovDeg{45, 45, 45, 45};
     ch.width = ch.height = size;
+    ch.stereo = stereo_mode_from_name(stereo);
     cluster.channels = {ch};
     cluster.output.auto_exposure.enabled = true;
     return cluster;
@@ -274,6 +277,7 @@ ClusterConfig one_channel(int size) {
 struct ViewTimes {
     std::vector<double> trivial, frame, untimed, read_back;
     std::vector<double> overlays_extra;  // with --overlays: each round's untimed frame minus the same without them
+    std::vector<double> mono;            // with --stereo: each round's mono frame of the same snapshot
     std::vector<double> trivial_cpu, frame_cpu;  // the process's CPU time (all its threads)
     std::map<std::string, std::vector<double>> passes;
     std::vector<std::string> order;  // pass names in run order
@@ -299,7 +303,8 @@ double untimed_without_overlays(SceneRenderer& r, Snapshot snap, const Options& 
     return one_frame(r, snap, o.read_back);
 }
 
-ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots& snaps, const Options& o) {
+ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots& snaps, const Options& o,
+                    SceneRenderer* mono) {
     for (int i = 0; i < o.warm_up; ++i) {
         trivial.run();
         one_frame(r, snaps(i), o.read_back);
@@ -327,8 +332,19 @@ ViewTimes time_view(SceneRenderer& r, TrivialPass& trivial, const FrameSnapshots
         }
         t.untimed.push_back(one_frame(r, next, o.read_back));
         if (!o.overlays.empty()) t.overlays_extra.push_back(t.untimed.back() - untimed_without_overlays(r, next, o));
+        if (mono) t.mono.push_back(one_frame(*mono, next, o.read_back));
     }
     return t;
+}
+
+// With --stereo: the mono frame of each round's snapshot, and the stereo frame over it (per round,
+// then the median): what the second eye and the packing cost.
+void add_stereo_figures(nlohmann::ordered_json& j, const ViewTimes& t, double trivial_ms) {
+    std::vector<double> over;
+    for (size_t i = 0; i < t.mono.size(); ++i) over.push_back(t.mono[i] > 0.0 ? t.untimed[i] / t.mono[i] : 0.0);
+    j["mono_frame_ms"] = median(t.mono);
+    j["mono_ratio"] = trivial_ms > 0.0 ? median(t.mono) / trivial_ms : 0.0;
+    j["stereo_over_mono"] = median(over);
 }
 
 nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Options& o, const std::string& model,
@@ -350,6 +366,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
         j["overlays_extra_ms"] = median(t.overlays_extra);
         j["overlays_ratio"] = trivial_ms > 0.0 ? median(t.overlays_extra) / trivial_ms : 0.0;
     }
+    if (!t.mono.empty()) add_stereo_figures(j, t, trivial_ms);
     // The fastest of the samples: on a machine shared with other work the least disturbed ones.
     const double trivial_min = *std::min_element(t.trivial.begin(), t.trivial.end());
     const double frame_min = *std::min_element(t.frame.begin(), t.frame.end());
@@ -377,6 +394,7 @@ nlohmann::ordered_json view_line(const ViewSpec& v, const ViewTimes& t, const Op
     j["stars_ignore_sky"] = o.stars_ignore_sky;
     j["sky_last"] = o.sky_last;
     j["overlays"] = o.overlays;
+    j["stereo"] = o.stereo;
     return j;
 }
 
@@ -397,6 +415,13 @@ const ViewSpec& find_view(const std::string& name) {
     throw std::runtime_error("no view named \"" + name + "\" (day, sunset, orbit, night, saturn)");
 }
 
+void configure(SceneRenderer& r, const Options& o) {
+    r.set_halo_with_atmosphere(!o.halo_separate);
+    r.set_surface_with_atmosphere(!o.surface_separate);
+    r.set_stars_see_the_sky(!o.stars_ignore_sky);
+    r.set_sky_first(!o.sky_last);
+}
+
 int run(const Options& o) {
     spdlog::set_level(spdlog::level::warn);
     unsetenv("DISPLAY");
@@ -405,7 +430,7 @@ int run(const Options& o) {
     for (const auto& name : o.views) views.push_back(&find_view(name));
     std::string model = "none";
     const SceneConfig scene = load_scene(o, model);
-    const ClusterConfig cluster = one_channel(o.size);
+    const ClusterConfig cluster = one_channel(o.size, o.stereo);
     EglContext gl(o.device);
     const std::string renderer = gl.info().renderer;
     std::fprintf(stderr, "frame_cost: renderer %s (%s), %d^2, %d frames after %d warm-up\n", renderer.c_str(),
@@ -415,10 +440,12 @@ int run(const Options& o) {
     std::unique_ptr<GlareSources> glare;
     if (scene.glare.enabled) glare = std::make_unique<GlareSources>(scene, &atmospheres);
     SceneRenderer r(cluster, cluster.channels[0], scene);
-    r.set_halo_with_atmosphere(!o.halo_separate);
-    r.set_surface_with_atmosphere(!o.surface_separate);
-    r.set_stars_see_the_sky(!o.stars_ignore_sky);
-    r.set_sky_first(!o.sky_last);
+    configure(r, o);
+    // With --stereo, the same channel in mono, drawn after each round's stereo frame.
+    const ClusterConfig mono_cluster = one_channel(o.size);
+    std::unique_ptr<SceneRenderer> mono;
+    if (o.stereo != "mono") mono = std::make_unique<SceneRenderer>(mono_cluster, mono_cluster.channels[0], scene);
+    if (mono) configure(*mono, o);
     TrivialPass trivial(o.size);
     for (const ViewSpec* v : views) {
         // With --overlays every overlay is fully in (the scene's overlays: the earth-moon scene's).
@@ -439,7 +466,7 @@ int run(const Options& o) {
             moved.sun_el_deg += i * o.sun_step_deg;
             return with_overlays(view_snapshot(moved, scene, cluster, exposure, glare.get()));
         };
-        const ViewTimes t = time_view(r, trivial, snaps, o);
+        const ViewTimes t = time_view(r, trivial, snaps, o, mono.get());
         std::printf("%s\n", view_line(*v, t, o, model, renderer).dump().c_str());
         std::fflush(stdout);
     }
@@ -452,6 +479,9 @@ int main(int argc, char** argv) {
     CLI::App app{"Frame cost of one earth-moon channel in three views, per pass and against a trivial pass"};
     Options o;
     app.add_option("--size", o.size, "channel width and height in pixels")->check(CLI::Range(16, 8192));
+    app.add_option("--stereo", o.stereo,
+                   "the channel's stereo (mono, side_by_side, top_bottom_half, anaglyph, ...): each round also draws "
+                   "the mono frame (mono_frame_ms, stereo_over_mono)");
     app.add_option("--frames", o.frames, "timed frames per view (medians reported)")->check(CLI::Range(1, 100000));
     app.add_option("--warm-up", o.warm_up, "untimed frames per view first")->check(CLI::Range(0, 1000));
     app.add_flag("--surface-separate", o.surface_separate,

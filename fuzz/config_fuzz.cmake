@@ -9,7 +9,8 @@ add_library(cupola_config_fuzz STATIC
   ${CUPOLA_ROOT}/common/config/json_reader.cpp ${CUPOLA_ROOT}/common/config/cluster_config.cpp
   ${CUPOLA_ROOT}/common/config/config_schema.cpp ${CUPOLA_ROOT}/common/projection/channel_frustum.cpp
   ${CUPOLA_ROOT}/common/projection/dome_frame.cpp ${CUPOLA_ROOT}/common/projection/fisheye.cpp
-  ${CUPOLA_ROOT}/common/projection/planar_screen.cpp ${CUPOLA_ROOT}/common/tracking/tracker_mounting.cpp)
+  ${CUPOLA_ROOT}/common/projection/planar_screen.cpp ${CUPOLA_ROOT}/common/projection/stereo_mode.cpp
+  ${CUPOLA_ROOT}/common/tracking/tracker_mounting.cpp)
 target_compile_options(cupola_config_fuzz PRIVATE -fsanitize=fuzzer-no-link)
 target_include_directories(cupola_config_fuzz PUBLIC ${CUPOLA_ROOT}/common
                            PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/generated)

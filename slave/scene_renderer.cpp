@@ -30,6 +30,7 @@
 #include "scene/snapshot_bodies.hpp"
 #include "scene/star_catalog.hpp"
 #include "shading/shared_shading.hpp"
+#include "stereo_packer.hpp"
 
 namespace cupola {
 
@@ -69,10 +70,12 @@ struct SceneRenderer::Impl {
         : scene(sc),
           channel(ch),
           room(cluster.room),
-          frustum(ch.frustum()),
+          eye_size(stereo_eye_size(ch.stereo, ch.width, ch.height)),
+          frustum(ch.orientation, ch.fov, eye_size.x, eye_size.y),
           camera_from_dome(dome_tilt_rotation(cluster.dome.tilt_deg)),
           tilt(camera_from_dome * channel_rotation(ch.orientation)),
-          targets(ch.width, ch.height, scene_has_terrain(sc)) {
+          targets(eye_size.x, eye_size.y, scene_has_terrain(sc)) {
+        if (stereo_eye_count(ch.stereo) == 2) packer = std::make_unique<StereoPacker>(ch.stereo, ch.width, ch.height);
         psf_sigma_rad = glm::radians(scene.stars.psf_sigma_arcmin / 60.0);
         coarsest_pixel_rad = pixel_angle_rad(frustum);
         for (const auto& c : cluster.channels)
@@ -147,18 +150,24 @@ struct SceneRenderer::Impl {
     // Where render() starts in the pass list: the first pass, or the pattern when one is on.
     size_t first_pass(const Snapshot& snap) const;
 
-    // The frame's eye (the snapshot's head): a channel given as a screen is seen from it, and the
-    // scene from the camera moved as far as the eye is from the room's origin.
-    void follow_head(const Snapshot& snap);
+    // The frame's eye on this side of the snapshot's head (-1 left, 0 the head, +1 right): a channel
+    // given as a screen is seen from it, and the scene from the camera moved as far as the eye is
+    // from the room's origin; any other channel keeps its frustum, and a stereo eye moves from the
+    // camera by its half of the eyes' separation across the head.
+    void follow_head(const Snapshot& snap, double eye_side);
+    // One eye's render: every pass, in order, into the targets.
+    void draw_eye(const Snapshot& snap);
 
     SceneConfig scene;
     ChannelConfig channel;
     RoomConfig room;
-    ChannelFrustum frustum;  // this frame's (follow_head)
+    glm::ivec2 eye_size;     // one eye's image (the channel's, but for half-resolution stereo)
+    ChannelFrustum frustum;  // this eye's (follow_head)
     glm::dmat3 camera_from_dome;
     glm::dmat3 tilt;                    // channel -> camera frame
     glm::dvec3 eye_offset_dome_m{0.0};  // this frame's eye from the camera, scene metres, dome frame
     FrameTargets targets;
+    std::unique_ptr<StereoPacker> packer;    // a stereo frame of two eyes: their packing
     int tables = 0;                          // atmosphere table sets built or loaded
     std::unique_ptr<ShadowCasting> casting;  // which casters shadow which receiver, per frame (CPU, double)
     EclipseShadowUniforms shadows{scene};    // the eclipse table and uniforms of shadowed passes
@@ -252,10 +261,15 @@ FrameContext SceneRenderer::Impl::frame_context(const Snapshot& snap) const {
     return f;
 }
 
-void SceneRenderer::Impl::follow_head(const Snapshot& snap) {
-    if (!channel.screen) return;  // a dome's or a calibrated projector's channel: the eye is the camera
-    frustum = channel.frustum_seen_from(snap.head.position_m);
-    eye_offset_dome_m = room.scene_offset_m(snap.head.position_m);
+void SceneRenderer::Impl::follow_head(const Snapshot& snap, double eye_side) {
+    const glm::dvec3 across = snap.head.orientation * glm::dvec3(0.5 * room.eye_separation_m * eye_side, 0.0, 0.0);
+    const glm::dvec3 eye = snap.head.position_m + across;
+    if (!channel.screen) {  // a dome's or a calibrated projector's channel: the eye is the camera's
+        eye_offset_dome_m = room.scale * across;
+        return;
+    }
+    frustum = ChannelFrustum(channel.orientation, channel.frustum_seen_from(eye).fov(), eye_size.x, eye_size.y);
+    eye_offset_dome_m = room.scene_offset_m(eye);
 }
 
 void SceneRenderer::Impl::set_planet_lights(FrameContext& f) const {
@@ -421,11 +435,13 @@ const OverlayPass* SceneRenderer::overlays() const { return impl_->overlays; }
 
 const FrameTimings& SceneRenderer::last_frame_timings() const { return impl_->timings; }
 
-const GlTexture& SceneRenderer::color() const { return impl_->targets.color(); }
+const GlTexture& SceneRenderer::color() const {
+    return impl_->packer ? impl_->packer->frame_color() : impl_->targets.color();
+}
 
 Image SceneRenderer::read_back() {
     ++impl_->read_backs;
-    return impl_->targets.read();
+    return impl_->packer ? impl_->packer->read() : impl_->targets.read();
 }
 
 uint64_t SceneRenderer::read_backs() const { return impl_->read_backs; }
@@ -440,26 +456,38 @@ uint64_t SceneRenderer::color_clears() const { return impl_->targets.color_clear
 
 long SceneRenderer::planet_points_drawn() const { return impl_->planet_points->points_drawn(); }
 
+void SceneRenderer::Impl::draw_eye(const Snapshot& snap) {
+    const FrameContext frame = frame_context(snap);
+    const size_t first = first_pass(snap);
+    const bool geometry_read = std::any_of(passes.begin() + static_cast<std::ptrdiff_t>(first), passes.end(),
+                                           [&](const auto& p) { return p->reads_geometry_in(frame); });
+    targets.begin_frame(geometry_read, !frame.sky_first);
+    for (size_t i = first; i < passes.size(); ++i) {
+        RenderPass* pass = passes[i].get();
+        const auto pass_t0 = timing ? TimingClock::now() : TimingClock::time_point{};
+        const PassIo io = pass->io();
+        const int steps = pass->prepare(frame);
+        for (int step = 0; step < steps; ++step) {
+            pass->draw(targets.bind_for(io), step);
+            targets.drawn(io);
+        }
+        if (timing) record_pass(timings, pass->name(), pass_t0);
+    }
+}
+
+// Each eye of the channel's stereo mode (one for mono), from the same snapshot; a stereo pair is
+// packed into the frame after each eye. The glare is measured in the left eye only (a right-eye
+// channel leaves it to its left twin): the cluster's sum stays one value per source.
 void SceneRenderer::draw(const Snapshot& snap) {
     Impl& m = *impl_;
     const auto frame_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
     if (m.timing) m.timings = FrameTimings{};
-    m.follow_head(snap);
-    const FrameContext frame = m.frame_context(snap);
-    const size_t first = m.first_pass(snap);
-    const bool geometry_read = std::any_of(m.passes.begin() + static_cast<std::ptrdiff_t>(first), m.passes.end(),
-                                           [&](const auto& p) { return p->reads_geometry_in(frame); });
-    m.targets.begin_frame(geometry_read, !frame.sky_first);
-    for (size_t i = first; i < m.passes.size(); ++i) {
-        RenderPass* pass = m.passes[i].get();
-        const auto pass_t0 = m.timing ? TimingClock::now() : TimingClock::time_point{};
-        const PassIo io = pass->io();
-        const int steps = pass->prepare(frame);
-        for (int step = 0; step < steps; ++step) {
-            pass->draw(m.targets.bind_for(io), step);
-            m.targets.drawn(io);
-        }
-        if (m.timing) record_pass(m.timings, pass->name(), pass_t0);
+    const int eyes = stereo_eye_count(m.channel.stereo);
+    for (int e = 0; e < eyes; ++e) {
+        m.follow_head(snap, stereo_eye_side(m.channel.stereo, e));
+        if (m.glare_probe) m.glare_probe->set_measuring(e == 0 && m.channel.stereo != StereoMode::Right);
+        m.draw_eye(snap);
+        if (m.packer) m.packer->place(e, m.targets.color());
     }
     glFinish();
     if (m.timing) m.timings.frame_ms = ms_since(frame_t0);

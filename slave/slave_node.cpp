@@ -41,13 +41,22 @@ std::optional<ProjectorWarp> channel_warp(const ChannelConfig& channel) {
     return load_channel_warp(*channel.calibration);
 }
 
+// The channel's frame: its render, both eyes of a packed stereo pair.
+glm::ivec2 frame_size(const ChannelConfig& c) { return stereo_frame_size(c.stereo, c.width, c.height); }
+
+// The frustum the output's acuity blur follows; none for a frame of two eyes side by side.
+std::optional<ChannelFrustum> content_view(const ChannelConfig& c) {
+    if (stereo_eye_count(c.stereo) == 2 && c.stereo != StereoMode::Anaglyph) return std::nullopt;
+    return c.frustum();
+}
+
 // The output surface and its EGL context (headless, an X11 window or a KMS output, from the
 // channel's sinks), named in the log as soon as it is up. A live output shows the projector
-// raster: the calibration's, else the channel render's size.
+// raster: the calibration's, else the channel's frame (both eyes of a packed stereo frame).
 struct LoggedSurface {
     LoggedSurface(const ChannelConfig& channel, int device, const std::optional<ProjectorWarp>& warp)
-        : surface(channel.output, device, warp ? warp->raster_width : channel.width,
-                  warp ? warp->raster_height : channel.height),
+        : surface(channel.output, device, warp ? warp->raster_width : frame_size(channel).x,
+                  warp ? warp->raster_height : frame_size(channel).y),
           context(surface.egl()) {
         const auto& i = context.info();
         spdlog::info("slave {}: EGL {} (device {} of {}), {} / {}", channel.name, i.platform, i.device_index,
@@ -109,8 +118,8 @@ struct SlaveNode::Loop {
           warp(channel_warp(channel)),
           gl(channel, n.options_.egl_device, warp),
           renderer(n.cluster_, channel, scene),
-          output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, warp, channel.width,
-                 channel.height, channel.frustum()),
+          output(gl.surface, channel.output, FilesOutput{n.options_.out_dir, n.options_.formats}, warp,
+                 frame_size(channel).x, frame_size(channel).y, content_view(channel)),
           session(new_session_nonce()),
           wire(open_slave_endpoint(n.cluster_, channel, key, session)),
           master(master_report_address(n.cluster_)),

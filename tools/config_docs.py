@@ -164,6 +164,19 @@ is also a direction from the scene's camera.
   large `scale` (1e11: the inner solar system in the room) the planets do.
 - **Channels given by angles** (domes, projectors from an MPCDI file) keep their frusta: the head
   moves only screens.
+- **Stereo.** `output.stereo` (or a channel's own `stereo`) renders the two eyes,
+  `room.eye_separation_m` apart along the head's x axis, each seeing its screen from where it is:
+  `left` or `right` alone (a channel or a slave per eye), both in one frame (`side_by_side`,
+  `top_bottom`: each eye at the channel's width x height, the frame twice as wide or tall;
+  `_half`: both squeezed into width x height), or a red-cyan `anaglyph` (Dubois 2001). A point on
+  a screen's plane has no disparity; a star, infinitely far, is seen in the same direction by both
+  eyes (on a screen its two images lie the eyes' separation apart; in a dome channel they
+  coincide). `scale` sets what has depth: at 1, only what is metres away; at 1e11, the planets.
+  Both eyes of a frame are rendered from the same snapshot; the glare's visibility is measured in
+  the first eye only, so it stays one value per source for the cluster. `quad_buffer` is refused:
+  EGL has no quad-buffered configs, and the KMS and headless outputs have no left and right back
+  buffers. A channel with a warp calibration shows one eye for now. The loopback's domemaster is
+  stitched from the left eyes.
 """,
 }
 

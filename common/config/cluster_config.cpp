@@ -230,6 +230,7 @@ struct ChannelDefaults {
     std::string directory;
     SinkConfig sinks;
     RoomConfig room;
+    StereoMode stereo = StereoMode::Mono;
 };
 
 // A channel given as a screen's corners in the room: the off-axis frustum from the room's eye.
@@ -272,6 +273,29 @@ void read_channel_frustum(const JsonReader& r, const ChannelDefaults& d, Channel
     c.fov = read_fov(r.child("fov"));
 }
 
+StereoMode read_stereo_mode(const JsonReader& r) {
+    try {
+        return stereo_mode_from_name(r.has("stereo") ? r.one_of("stereo", r.declared_choices("stereo")) : "mono");
+    } catch (const std::invalid_argument& e) {
+        r.fail("stereo", e.what());
+    }
+}
+
+// The channel's stereo mode (its own, or the output section's), and what it cannot be combined with.
+void read_channel_stereo(const JsonReader& r, const ChannelDefaults& d, ChannelConfig& c) {
+    c.stereo = r.has("stereo") ? read_stereo_mode(r) : d.stereo;
+    if (c.stereo == StereoMode::Mono) return;
+    const char* key = r.has("stereo") ? "stereo" : "id";
+    if (c.calibration)
+        r.fail(key,
+               "a channel with a warp calibration shows one eye (stereo mono, left or right) for now; its frame "
+               "would hold two images where the warp expects one");
+    const bool half = c.stereo == StereoMode::SideBySideHalf || c.stereo == StereoMode::TopBottomHalf;
+    if (half && (c.width % 2 || c.height % 2))
+        r.fail(key, "a half-resolution stereo frame needs an even width and height, not " + std::to_string(c.width) +
+                        "x" + std::to_string(c.height));
+}
+
 ChannelConfig read_channel(const JsonReader& r, const ChannelDefaults& d) {
     ChannelConfig c;
     c.output = d.sinks;
@@ -294,6 +318,7 @@ ChannelConfig read_channel(const JsonReader& r, const ChannelDefaults& d) {
         c.output = read_sinks(*o, d.sinks);
         o->reject_unknown_keys();
     }
+    read_channel_stereo(r, d, c);
     r.reject_unknown_keys();
     return c;
 }
@@ -330,6 +355,7 @@ RoomConfig read_room(const JsonReader& r) {
     room.eye_m = r.optional_dvec3("eye_m").value_or(glm::dvec3(0.0));
     room.origin_m = r.optional_dvec3("origin_m");
     room.scale = r.declared_number("scale");
+    room.eye_separation_m = r.declared_number("eye_separation_m");
     room.tracking = read_tracking(r.section("tracking"));
     r.reject_unknown_keys();
     return room;
@@ -380,6 +406,7 @@ OutputConfig read_output(const JsonReader& o, int& default_w, int& default_h) {
     out.exposure = o.declared_number("exposure");
     if (auto a = o.optional_child("auto_exposure")) out.auto_exposure = read_auto_exposure(*a);
     out.sink = read_sinks(o, SinkConfig{});
+    out.stereo = read_stereo_mode(o);
     default_w = static_cast<int>(o.declared_integer("width"));
     default_h = static_cast<int>(o.declared_integer("height"));
     o.reject_unknown_keys();
@@ -481,6 +508,7 @@ ClusterConfig load_cluster_config(const std::string& file_in) {
     defaults.transport = cfg.network.transport;
     defaults.directory = cfg.directory;
     defaults.sinks = cfg.output.sink;
+    defaults.stereo = cfg.output.stereo;
     defaults.room = cfg.room;
     cfg.channels = read_channels(r, defaults);
     r.reject_unknown_keys();

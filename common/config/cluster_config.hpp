@@ -14,6 +14,7 @@
 #include "calibration/mpcdi_reading.hpp"
 #include "projection/channel_frustum.hpp"
 #include "projection/planar_screen.hpp"
+#include "projection/stereo_mode.hpp"
 #include "tracking/head_tracking_config.hpp"
 
 namespace cupola {
@@ -86,7 +87,8 @@ struct OutputConfig {
     int domemaster_size = 1024;
     double exposure = 1.0;  // fixed exposure (scene units -> display), unless auto_exposure
     AutoExposureConfig auto_exposure;
-    SinkConfig sink;  // cluster-wide; a channel's own output section replaces parts of it
+    SinkConfig sink;                       // cluster-wide; a channel's own output section replaces parts of it
+    StereoMode stereo = StereoMode::Mono;  // every channel's, unless it gives its own
 };
 
 // Live navigation on the master (master/input, master/navigation): the USB devices and how they
@@ -130,6 +132,7 @@ struct RoomConfig {
     glm::dvec3 eye_m{0.0};
     std::optional<glm::dvec3> origin_m;  // none: eye_m
     double scale = 1.0;                  // scene metres per room metre
+    double eye_separation_m = 0.064;     // between the viewer's eyes (stereo)
     HeadTrackingConfig tracking;
     glm::dvec3 origin() const { return origin_m.value_or(eye_m); }
     // How far an eye at this room point is from the scene's camera, in scene metres along the
@@ -142,7 +145,8 @@ struct ChannelConfig {
     std::string name;
     EulerDeg orientation;
     FovDeg fov;
-    std::optional<PlanarScreen> screen;  // given as a flat screen's corners: orientation and fov follow
+    std::optional<PlanarScreen> screen;    // given as a flat screen's corners: orientation and fov follow
+    StereoMode stereo = StereoMode::Mono;  // one eye, or both packed into its frame
     std::optional<ChannelCalibration> calibration;
     int width = 512;
     int height = 512;

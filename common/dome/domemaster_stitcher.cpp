@@ -260,12 +260,27 @@ struct FrameChannels {
 };
 
 // Reports where a channel image disagrees with the config or its own file name (it is used anyway).
+// A stereo channel's frame holds both eyes: the domemaster takes the left (row 0 at the top, so
+// the left eye of a top-bottom frame is its first rows). An anaglyph or a single eye is as it is.
+Image left_eye_of(const ChannelConfig& ch, Image im) {
+    if (stereo_eye_count(ch.stereo) != 2 || ch.stereo == StereoMode::Anaglyph) return im;
+    const glm::ivec2 frame = stereo_frame_size(ch.stereo, ch.width, ch.height);
+    if (im.width != frame.x || im.height != frame.y) return im;  // check_channel_image says so
+    const glm::ivec2 eye = stereo_eye_size(ch.stereo, ch.width, ch.height);
+    Image out;
+    out.width = eye.x, out.height = eye.y;
+    out.rgba.resize(static_cast<size_t>(eye.x) * eye.y * 4);
+    for (int y = 0; y < eye.y; ++y) std::copy_n(im.pixel(0, y), static_cast<size_t>(eye.x) * 4, out.pixel(0, y));
+    return out;
+}
+
 void check_channel_image(const ChannelConfig& ch, uint64_t frame, const std::string& path, const Image& im,
                          const FrameMetadata& meta, const std::string& label, StitchReport& report) {
-    if (!ch.calibration && (im.width != ch.width || im.height != ch.height))
+    const glm::ivec2 size = stereo_frame_size(ch.stereo, ch.width, ch.height);
+    if (!ch.calibration && (im.width != size.x || im.height != size.y))
         report.problems.push_back(label + ": " + path + " is " + std::to_string(im.width) + "x" +
                                   std::to_string(im.height) + " but channel " + ch.name + " is " +
-                                  std::to_string(ch.width) + "x" + std::to_string(ch.height) +
+                                  std::to_string(size.x) + "x" + std::to_string(size.y) +
                                   " in the config (resampled with its own size)");
     if (meta.frame != frame)
         report.problems.push_back(label + ": " + path + " records frame " + std::to_string(meta.frame));
@@ -298,7 +313,7 @@ FrameChannels read_frame_channels(const ClusterConfig& config, const std::vector
         try {
             im = read_image_radiance(it->second, &meta);
             check_channel_image(ch, frame, it->second, im, meta, label, report);
-            im = channel_space(ch, warps[i], std::move(im));
+            im = channel_space(ch, warps[i], left_eye_of(ch, std::move(im)));
         } catch (const std::exception& e) {
             report.problems.push_back(label + ": channel " + ch.name + ": " + e.what());
             continue;

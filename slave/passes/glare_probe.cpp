@@ -76,7 +76,7 @@ GlareProbe::~GlareProbe() {
 
 int GlareProbe::prepare(const FrameContext& frame) {
     frame_ = &frame;
-    return frame.snap->glare.empty() ? 0 : 1;
+    return frame.snap->glare.empty() || !measuring_ ? 0 : 1;
 }
 
 void GlareProbe::draw(const PassInputs&, int) { measure(*frame_->snap, bodies_, frame_->light, shadows_); }

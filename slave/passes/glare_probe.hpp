@@ -50,6 +50,8 @@ public:
     int prepare(const FrameContext& frame) override;
     void draw(const PassInputs& in, int step) override;
     void frame_finished() override { collect(); }
+    // Off: prepare() draws nothing (the second eye of a stereo frame: measured once per frame).
+    void set_measuring(bool on) { measuring_ = on; }
 
     // Issues the queries for the snapshot's glare sources (after the occluders of the frame's own
     // render, before the atmosphere). Leaves GL with depth test off and depth writes on.
@@ -93,6 +95,7 @@ private:
     BodyPass& bodies_;
     const EclipseShadowUniforms& shadows_;
     TerrainDrawer* terrain_ = nullptr;
+    bool measuring_ = true;
     const FrameContext* frame_ = nullptr;
     GlDepthTarget target_;
     GlProgram query_;
