@@ -191,8 +191,9 @@ std::optional<glm::dvec3> OverlayPass::label_direction(size_t i) const {
 void OverlayPass::declutter() {
     std::vector<LabelFootprint> footprints;
     std::vector<size_t> index;
+    label_dirs_.assign(labels_.size(), std::nullopt);
     for (size_t i = 0; i < labels_.size(); ++i) {
-        const auto d = label_direction(i);
+        const auto d = label_dirs_[i] = label_direction(i);
         if (!d) continue;
         const OverlayLabel& l = labels_[i];
         const int priority = l.kind == OverlayKind::Cardinals            ? kCardinalPriority
@@ -207,12 +208,12 @@ void OverlayPass::declutter() {
     for (size_t k = 0; k < index.size(); ++k) label_drawn_[index[k]] = kept[k];
 }
 
-// The drawn bodies' names at their directions from the camera this frame.
+// The drawn bodies' names at their directions from the camera this frame (declutter's).
 void OverlayPass::update_body_labels() {
     std::vector<float> v;
     for (size_t i = 0; i < labels_.size(); ++i) {
         if (!labels_[i].body || !label_drawn_[i]) continue;
-        const auto q = label_vertices(boxes_[i], *label_direction(i), static_cast<size_t>(OverlayKind::Labels));
+        const auto q = label_vertices(boxes_[i], *label_dirs_[i], static_cast<size_t>(OverlayKind::Labels));
         v.insert(v.end(), q.begin(), q.end());
     }
     body_labels_.upload(v);

@@ -84,10 +84,11 @@ private:
     std::vector<OverlayLabel> labels_;
     std::vector<LabelBox> boxes_;  // one per label
     std::unique_ptr<GlTexture> atlas_;
-    GlVertexBuffer static_labels_;           // every label but the bodies', in label order
-    std::vector<GLint> label_vertex_first_;  // per label: its first vertex there (-1: a body's)
-    std::vector<bool> label_drawn_;          // per label, this frame
-    std::vector<GLint> run_first_;           // this frame's runs of drawn labels in static_labels_
+    GlVertexBuffer static_labels_;                       // every label but the bodies', in label order
+    std::vector<GLint> label_vertex_first_;              // per label: its first vertex there (-1: a body's)
+    std::vector<bool> label_drawn_;                      // per label, this frame
+    std::vector<std::optional<glm::dvec3>> label_dirs_;  // per label, this frame (none: not shown)
+    std::vector<GLint> run_first_;                       // this frame's runs of drawn labels in static_labels_
     std::vector<GLsizei> run_count_;
     GlVertexBuffer body_labels_;
     const FrameContext* frame_ = nullptr;

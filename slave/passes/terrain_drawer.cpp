@@ -48,7 +48,6 @@ TerrainDrawer::TerrainDrawer(const SceneConfig& scene, const ClusterConfig& clus
     }
     if (bodies_.empty()) return;
     lit_ = std::make_unique<GlProgram>("terrain.vert", "terrain.frag", "#define TERRAIN_AIR 0\n");
-    depth_ = std::make_unique<GlProgram>("terrain.vert", "terrain_depth.frag");
     for (const BodyConfig& c : scene.bodies)
         if (c.terrain.present && c.atmosphere.present && !air_)
             air_ = std::make_unique<GlProgram>("terrain.vert", "terrain.frag", "#define TERRAIN_AIR 1\n");
@@ -141,7 +140,9 @@ void TerrainDrawer::draw(const FrameContext& f, const FrameBody& body, const GlT
     s.cut_hash = tiles.cut.hash();
     s.cut_tiles = tiles.cut.tiles.size();
     s.stand_ins = tiles.list.stand_ins;
-    draw_tiles(p, b, f.view, body, tiles.cut, tiles.list.meshes);
+    const DrawnTiles drawn = draw_tiles(p, b, f.view, body, tiles.cut, tiles.list.meshes);
+    s.drawn_tiles = drawn.tiles;
+    s.triangles = drawn.triangles;
     s.gpu_meshes = b.gpu.size();
     glDisable(GL_DEPTH_TEST);
     gl::check("terrain (" + body.body->name + ")");
@@ -152,11 +153,11 @@ void TerrainDrawer::draw_depth(const FrameContext& f, const ChannelView& view, c
     const FrameTiles& tiles = frame_tiles(b, f, body);
     const Meshes seen = meshes_in_view(tiles.list.meshes, view, body);
     if (seen.empty()) return;
+    // Compiled on the first use: a scene whose relief never meets a glare probe never needs it.
+    if (!depth_) depth_ = std::make_unique<GlProgram>("terrain.vert", "terrain_depth.frag");
     depth_->use();
     set_view(*depth_, view, body);
-    const TerrainFrameStats kept = b.last;  // the frame's own draw's figures
-    draw_tiles(*depth_, b, view, body, tiles.cut, seen);
-    b.last = kept;
+    draw_tiles(*depth_, b, view, body, tiles.cut, seen);  // not the frame's own draw: not counted
     gl::check("terrain depth (" + body.body->name + ")");
 }
 
@@ -179,10 +180,12 @@ TerrainDrawer::Meshes TerrainDrawer::meshes_in_view(const Meshes& meshes, const 
     return out;
 }
 
-// The tiles' meshes, each moved toward its parent's shape by its cut tile's morph distance; counts
-// the triangles and meshes drawn into b.last.
-void TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const ChannelView& view, const FrameBody& body,
-                               const terrain::TerrainCut& cut, const Meshes& meshes) {
+// The tiles' meshes, each moved toward its parent's shape by its cut tile's morph distance; returns
+// how many meshes and triangles it drew.
+TerrainDrawer::DrawnTiles TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const ChannelView& view,
+                                                    const FrameBody& body, const terrain::TerrainCut& cut,
+                                                    const Meshes& meshes) {
+    DrawnTiles drawn;
     const glm::dmat3 to_world = body_to_world(*body.state);
     const glm::dmat3 body_to_channel = view.world_to_channel * to_world;
     const glm::dvec3 camera_body = glm::transpose(to_world) * (view.camera_position_m - body.state->position_m);
@@ -197,9 +200,10 @@ void TerrainDrawer::draw_tiles(const GlProgram& p, Body& b, const ChannelView& v
         buffer.bind();
         const size_t count = index_count(mesh->segments);
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT, nullptr);
-        b.last.triangles += count / 3;
-        ++b.last.drawn_tiles;
+        drawn.triangles += count / 3;
+        ++drawn.tiles;
     }
+    return drawn;
 }
 
 void TerrainDrawer::wait_idle() {

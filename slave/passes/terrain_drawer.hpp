@@ -97,15 +97,18 @@ private:
     const FrameTiles& frame_tiles(Body& b, const FrameContext& f, const FrameBody& body);
     void set_view(const GlProgram& p, const ChannelView& view, const FrameBody& body) const;
     using Meshes = std::vector<std::shared_ptr<const terrain::TileMesh>>;
-    void draw_tiles(const GlProgram& p, Body& b, const ChannelView& view, const FrameBody& body,
-                    const terrain::TerrainCut& cut, const Meshes& meshes);
+    struct DrawnTiles {
+        size_t tiles = 0, triangles = 0;
+    };
+    DrawnTiles draw_tiles(const GlProgram& p, Body& b, const ChannelView& view, const FrameBody& body,
+                          const terrain::TerrainCut& cut, const Meshes& meshes);
     // The meshes whose bound reaches into a view's cone.
     static Meshes meshes_in_view(const Meshes& meshes, const ChannelView& view, const FrameBody& body);
 
     const ClusterConfig cluster_;  // a copy: the renderer is often made from a temporary
     std::map<uint16_t, std::unique_ptr<Body>> bodies_;
     std::unique_ptr<GlProgram> lit_, air_;  // without and with an atmosphere
-    std::unique_ptr<GlProgram> depth_;      // depth alone (draw_depth)
+    std::unique_ptr<GlProgram> depth_;      // depth alone (draw_depth; compiled on its first use)
 };
 
 }  // namespace cupola
